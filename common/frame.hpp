@@ -1,0 +1,44 @@
+// The force-network frame as simulators report it, and its validation.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fnet {
+
+struct Particle {
+  double x = 0, y = 0, r = 0;
+};
+
+// fn is signed as the simulator reports it (a damped spring may be slightly tensile);
+// ft is the tangential force magnitude. Force networks use |fn| and |ft|.
+struct Contact {
+  std::int64_t i = 0, j = 0;
+  double fn = 0, ft = 0;
+};
+
+struct Frame {
+  std::string label;                 // names the frame in every message ("frame 12", a file name)
+  std::size_t particle_count = 0;    // vertices of the network, rattlers included
+  std::vector<Particle> particles;   // empty, or exactly particle_count entries
+  std::vector<Contact> contacts;
+};
+
+// Thrown for a frame that must be rejected; what() names the frame and the offending entry.
+class FrameError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Checks everything the analysis relies on: finite values, non-negative radii, indices in
+// [0, particle_count), no self-contacts, no pair listed twice (in either order).
+// A frame with no contacts is valid. Throws FrameError on the first problem found.
+void validate(const Frame& frame);
+
+// particle_count for a frame read without a particle table: the largest index + 1.
+std::size_t implied_particle_count(const std::vector<Contact>& contacts);
+
+}  // namespace fnet

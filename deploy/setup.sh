@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs every Debian package that fnet's build, tests and benchmarks need.
+# Idempotent and non-interactive; run as root (or through sudo) on Debian 12.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config git ca-certificates
+  # libraries of the design
+  libeigen3-dev libhdf5-dev libboost-dev libboost-program-options-dev
+  nlohmann-json3-dev cyclonedds-dev cyclonedds-tools
+  # tests
+  libgtest-dev googletest
+  # independent oracles used by tests and benchmarks
+  libgudhi-dev python3 python3-gudhi python3-numpy python3-scipy python3-pot python3-h5py
+  lammps
+  # process tools used by end-to-end tests
+  procps iproute2
+)
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update
+  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+fi
