@@ -1,19 +1,13 @@
-// fnet-analyze: the offline front end. `fnet-analyze diagram` prints a frame's persistence
-// diagrams as one JSON object.
+// fnet-analyze: the offline front end of fnet's analysis.
 #include <boost/program_options.hpp>
 #include <exception>
+#include <functional>
 #include <iostream>
-#include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
-#include "common/diagram_json.hpp"
-#include "common/force_network.hpp"
-#include "common/frame.hpp"
-#include "common/frame_csv.hpp"
-#include "common/persistence.hpp"
-
-namespace po = boost::program_options;
+#include "server/analysis/commands.hpp"
 
 namespace {
 
@@ -25,63 +19,32 @@ constexpr const char* kUsage =
     "\n"
     "Run 'fnet-analyze <command> --help' for the options of a command.\n";
 
-int run_diagram(const std::vector<std::string>& args) {
-  po::options_description options(
-      "usage: fnet-analyze diagram --contacts C.csv [--particles P.csv] [--force normal|tangential]\n"
-      "\n"
-      "Prints {\"pd0\": [[birth, death], ...], \"pd1\": [...], \"vertices\": N, \"edges\": E, \"triangles\": T}.\n"
-      "Forces are normalized by the frame's mean over contacts with force > 0; the filtration is\n"
-      "superlevel (strong forces first) on the flag complex of the contact graph. A point's death\n"
-      "is -1 when the class never dies (rattlers give (0, -1)). Points are sorted by birth, then\n"
-      "death, both descending.\n"
-      "\n"
-      "options");
-  std::string contacts, particles, force = "normal";
-  options.add_options()
-      ("help,h", "show this help")
-      ("contacts", po::value(&contacts)->required(),
-       "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential "
-       "force (magnitudes are used)")
-      ("particles", po::value(&particles),
-       "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
-       "largest contact index + 1)")
-      ("force", po::value(&force)->default_value("normal"), "which force network: normal or tangential");
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return 0;
-  }
-  po::notify(vm);
-
-  const fnet::ForceKind kind = fnet::parse_force_kind(force);
-  fnet::Frame frame = fnet::read_frame_csv(
-      contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
-  fnet::validate(frame);
-  const fnet::FrameDiagrams diagrams = fnet::compute_persistence(fnet::build_network(frame, kind));
-  std::cout << fnet::to_json(diagrams).dump() << "\n";
-  return 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
+  using Command = std::function<int(const std::vector<std::string>&)>;
+  const std::map<std::string, Command> commands = {
+      {"diagram", fnet::analyze::diagram_command},
+  };
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     (args.empty() ? std::cerr : std::cout) << kUsage;
     return args.empty() ? 2 : 0;
   }
-  const std::string command = args[0];
+  const std::string name = args[0];
   args.erase(args.begin());
-  try {
-    if (command == "diagram") return run_diagram(args);
-    std::cerr << "fnet-analyze: unknown command '" << command << "'\n\n" << kUsage;
+  const auto command = commands.find(name);
+  if (command == commands.end()) {
+    std::cerr << "fnet-analyze: unknown command '" << name << "'\n\n" << kUsage;
     return 2;
-  } catch (const po::error& e) {
-    std::cerr << "fnet-analyze " << command << ": " << e.what() << " (see --help)\n";
+  }
+  try {
+    return command->second(args);
+  } catch (const boost::program_options::error& e) {
+    std::cerr << "fnet-analyze " << name << ": " << e.what() << " (see --help)\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "fnet-analyze " << command << ": " << e.what() << "\n";
+    std::cerr << "fnet-analyze " << name << ": " << e.what() << "\n";
     return 1;
   }
 }

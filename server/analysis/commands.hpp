@@ -1,0 +1,11 @@
+// The subcommands of fnet-analyze; each parses its own options and returns the exit code.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fnet::analyze {
+
+int diagram_command(const std::vector<std::string>& args);
+
+}  // namespace fnet::analyze

@@ -1,0 +1,57 @@
+// fnet-analyze diagram: a frame's persistence diagrams as one JSON object.
+#include <boost/program_options.hpp>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/diagram_json.hpp"
+#include "common/force_network.hpp"
+#include "common/frame.hpp"
+#include "common/frame_csv.hpp"
+#include "common/persistence.hpp"
+#include "server/analysis/commands.hpp"
+
+namespace po = boost::program_options;
+
+namespace fnet::analyze {
+
+int diagram_command(const std::vector<std::string>& args) {
+  po::options_description options(
+      "usage: fnet-analyze diagram --contacts C.csv [--particles P.csv] [--force normal|tangential]\n"
+      "\n"
+      "Prints {\"pd0\": [[birth, death], ...], \"pd1\": [...], \"vertices\": N, \"edges\": E, \"triangles\": T}.\n"
+      "Forces are normalized by the frame's mean over contacts with force > 0; the filtration is\n"
+      "superlevel (strong forces first) on the flag complex of the contact graph. A point's death\n"
+      "is -1 when the class never dies (rattlers give (0, -1)). Points are sorted by birth, then\n"
+      "death, both descending.\n"
+      "\n"
+      "options");
+  std::string contacts, particles, force = "normal";
+  options.add_options()
+      ("help,h", "show this help")
+      ("contacts", po::value(&contacts)->required(),
+       "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential "
+       "force (magnitudes are used)")
+      ("particles", po::value(&particles),
+       "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
+       "largest contact index + 1)")
+      ("force", po::value(&force)->default_value("normal"), "which force network: normal or tangential");
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(options).run(), vm);
+  if (vm.count("help")) {
+    std::cout << options << "\n";
+    return 0;
+  }
+  po::notify(vm);
+
+  const fnet::ForceKind kind = fnet::parse_force_kind(force);
+  fnet::Frame frame = fnet::read_frame_csv(
+      contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
+  fnet::validate(frame);
+  const fnet::FrameDiagrams diagrams = fnet::compute_persistence(fnet::build_network(frame, kind));
+  std::cout << fnet::to_json(diagrams).dump() << "\n";
+  return 0;
+}
+
+}  // namespace fnet::analyze
