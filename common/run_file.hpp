@@ -1,0 +1,40 @@
+// The HDF5 run file: a run's parameters and every frame, appended as the run goes and flushed
+// after each frame so that a killed writer leaves a readable file. Schema: proto/run_file.md.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "common/hdf5_handle.hpp"
+#include "common/run_frame.hpp"
+
+namespace fnet {
+
+inline constexpr const char* kRunFileSchema = "fnet-run-1";
+
+class RunFileWriter {
+ public:
+  // Creates `path` (replacing any file there) and records the run's parameters.
+  RunFileWriter(const std::filesystem::path& path, const RunInfo& info);
+  // Reopens a file written earlier to append to it (resuming a run): frames with index >= `keep`
+  // are removed first, so a resumed run can rewrite them.
+  static RunFileWriter reopen(const std::filesystem::path& path, std::uint32_t keep);
+
+  void append(const RunFrame& frame);
+  std::size_t frames() const { return frames_; }
+
+ private:
+  RunFileWriter() = default;
+  h5::File file_;
+  std::size_t frames_ = 0;
+};
+
+struct RunFileContents {
+  RunInfo info;
+  std::vector<RunFrame> frames;  // in frame order
+};
+
+// Reads a whole run file; throws h5::Error naming the file and what is missing or malformed.
+RunFileContents read_run_file(const std::filesystem::path& path);
+
+}  // namespace fnet
