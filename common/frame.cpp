@@ -24,12 +24,19 @@ std::string describe(const Contact& c, std::size_t row) {
 std::size_t implied_particle_count(const std::vector<Contact>& contacts) {
   std::int64_t largest = -1;
   for (const Contact& c : contacts) largest = std::max({largest, c.i, c.j});
-  return static_cast<std::size_t>(largest + 1);
+  return largest < 0 ? 0 : static_cast<std::size_t>(largest) + 1;  // unsigned: no overflow at INT64_MAX
 }
 
 void validate(const Frame& frame) {
-  if (frame.particle_count > std::size_t{UINT32_MAX})
+  if (frame.particle_count > std::size_t{UINT32_MAX}) {
+    // Without a particle table the count came from a contact: name it.
+    for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
+      const Contact& c = frame.contacts[k];
+      if (std::max(c.i, c.j) >= std::int64_t{UINT32_MAX})
+        reject(frame, describe(c, k) + ": particle index exceeds the largest supported, 2^32 - 2");
+    }
     reject(frame, "particle count " + std::to_string(frame.particle_count) + " exceeds 2^32 - 1");
+  }
   if (!frame.particles.empty() && frame.particles.size() != frame.particle_count)
     reject(frame, "particle table has " + std::to_string(frame.particles.size()) +
                       " rows but the frame declares " + std::to_string(frame.particle_count) + " particles");

@@ -64,7 +64,7 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
     if (cells.size() != width)
       fail("expected " + std::to_string(width) + " fields, found " + std::to_string(cells.size()));
     for (std::size_t k = 0; k < K; ++k) fields[k] = cells[column[k]];
-    row(fields, fail);
+    row(fields, fail, line_no);
   }
 }
 
@@ -73,7 +73,10 @@ T parse(std::string_view text, std::string_view column, Fail fail) {
   T value{};
   const char* first = text.data();
   const char* last = text.data() + text.size();
-  if (!text.empty() && text.front() == '+') ++first;
+  if (!text.empty() && text.front() == '+') {
+    ++first;
+    if (first != last && (*first == '-' || *first == '+')) first = last;  // "+-2" is not a number
+  }
   const auto [ptr, ec] = std::from_chars(first, last, value);
   if (text.empty() || ec != std::errc() || ptr != last)
     fail("column '" + std::string(column) + "': '" + std::string(text) + "' is not a valid " +
@@ -86,7 +89,7 @@ T parse(std::string_view text, std::string_view column, Fail fail) {
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
   std::vector<Contact> out;
   static constexpr std::array<std::string_view, 4> names{"i", "j", "fn", "ft"};
-  read_table(path, names, [&](const auto& f, const auto& fail) {
+  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t) {
     out.push_back({parse<std::int64_t>(f[0], "i", fail), parse<std::int64_t>(f[1], "j", fail),
                    parse<double>(f[2], "fn", fail), parse<double>(f[3], "ft", fail)});
   });
@@ -94,21 +97,29 @@ std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
 }
 
 std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
-  std::vector<std::pair<std::int64_t, Particle>> rows;
+  struct Row {
+    std::int64_t id;
+    Particle particle;
+    std::size_t line;
+  };
+  std::vector<Row> rows;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
-  read_table(path, names, [&](const auto& f, const auto& fail) {
-    rows.emplace_back(parse<std::int64_t>(f[0], "id", fail),
-                      Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)});
+  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t line) {
+    rows.push_back({parse<std::int64_t>(f[0], "id", fail),
+                    Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)}, line});
   });
   std::vector<Particle> out(rows.size());
-  std::vector<bool> seen(rows.size(), false);
-  for (const auto& [id, p] : rows) {
-    if (id < 0 || static_cast<std::size_t>(id) >= rows.size())
-      throw CsvError(path.string() + ": particle id " + std::to_string(id) + " out of range [0, " +
-                     std::to_string(rows.size()) + "): ids must be 0..n-1");
-    if (seen[id]) throw CsvError(path.string() + ": particle id " + std::to_string(id) + " appears twice");
-    seen[id] = true;
-    out[id] = p;
+  std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
+  for (const Row& r : rows) {
+    const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
+    if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
+      throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " + std::to_string(rows.size()) +
+                     "): ids must be 0..n-1");
+    if (seen_at[r.id])
+      throw CsvError(where + "particle id " + std::to_string(r.id) + " appears twice (first on line " +
+                     std::to_string(seen_at[r.id]) + ")");
+    seen_at[r.id] = r.line;
+    out[r.id] = r.particle;
   }
   return out;
 }

@@ -1,17 +1,21 @@
-// Stable LSD radix sort of records by a 64-bit unsigned key, for the large sorts on the hot path
-// (edges by force value). Digits shared by every key are skipped, so typical force data costs
-// 5-7 passes; small inputs fall back to std::stable_sort.
+// Radix sorts for the hot path: a stable LSD sort of records by a 64-bit key, and an MSD sort of
+// (key, tie) pairs that orders edges by force value with a total, input-independent tie order.
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace fnet {
 
-// Sorts `items` ascending by key(item), keeping the input order among equal keys.
+// Sorts `items` ascending by key(item), keeping the input order among equal keys. Digits shared
+// by every key are skipped; small inputs fall back to std::stable_sort.
 template <class T, class KeyFn>
 void radix_sort(std::vector<T>& items, KeyFn key) {
   const std::size_t n = items.size();
@@ -42,6 +46,93 @@ void radix_sort(std::vector<T>& items, KeyFn key) {
     items.swap(items_tmp);
     keys.swap(keys_tmp);
   }
+}
+
+// No member initializers: buffers of these are allocated uninitialized on the hot path.
+struct KeyedRecord {
+  std::uint64_t key, tie;
+};
+
+namespace detail {
+
+inline bool keyed_less(const KeyedRecord& a, const KeyedRecord& b) { return a.key != b.key ? a.key < b.key : a.tie < b.tie; }
+
+// Buckets up to this size are finished by insertion sort.
+inline constexpr std::size_t kInsertionRun = 24;
+
+inline void insertion_sort(KeyedRecord* a, std::size_t n) {
+  for (std::size_t i = 1; i < n; ++i) {
+    const KeyedRecord x = a[i];
+    std::size_t j = i;
+    for (; j > 0 && keyed_less(x, a[j - 1]); --j) a[j] = a[j - 1];
+    a[j] = x;
+  }
+}
+
+// One MSD level: the range [lo, hi] of the keys in hand is cut into about as many buckets as
+// there are records (at most 2^MaxBits), so that typical force data (a few dense binades) lands
+// mostly one or two records a bucket after a single scatter; crowded buckets take another level,
+// now hot in cache. Digits are at most 14 bits at the top and 11 below: the counts on the stack
+// stay small (64 KiB, then 8 KiB a level) and the scatter's open lines fit in L2.
+// Scatters a[0, n) into out; end[b] is then the end of bucket b. Returns the bucket count.
+template <int MaxBits>
+std::size_t scatter(const KeyedRecord* a, KeyedRecord* out, std::size_t n, std::uint64_t lo, std::uint64_t hi,
+                    std::uint32_t* end, int extra_bits = 0) {
+  const int width = static_cast<int>(std::bit_width(hi - lo));
+  const int bits = std::min(std::clamp(static_cast<int>(std::bit_width(n)) + extra_bits, 4, MaxBits), width);
+  const int shift = width - bits;
+  const std::size_t buckets = std::size_t{1} << bits;
+  std::fill(end, end + buckets, 0u);  // counts, then starts, then (after the scatter) ends
+  for (std::size_t i = 0; i < n; ++i) ++end[(a[i].key - lo) >> shift];
+  std::uint32_t sum = 0;
+  for (std::size_t b = 0; b < buckets; ++b) sum += std::exchange(end[b], sum);
+  for (std::size_t i = 0; i < n; ++i) out[end[(a[i].key - lo) >> shift]++] = a[i];
+  return buckets;
+}
+
+inline void sort_ties(KeyedRecord* a, std::size_t n) {
+  std::sort(a, a + n, [](const KeyedRecord& x, const KeyedRecord& y) { return x.tie < y.tie; });
+}
+
+// A crowded bucket, sorted in place (tmp as scratch). Small buckets are left to the final
+// insertion pass, which moves records only within their bucket: everything before a bucket
+// is strictly smaller.
+inline void sort_bucket(KeyedRecord* a, KeyedRecord* tmp, std::size_t n) {
+  std::uint64_t lo = a[0].key, hi = a[0].key;
+  for (std::size_t i = 1; i < n; ++i) lo = std::min(lo, a[i].key), hi = std::max(hi, a[i].key);
+  if (lo == hi) return sort_ties(a, n);
+  std::uint32_t end[1 << 11];
+  const std::size_t buckets = scatter<11>(a, tmp, n, lo, hi, end);
+  std::memcpy(static_cast<void*>(a), tmp, n * sizeof(KeyedRecord));
+  for (std::size_t b = 0, first = 0; b < buckets; first = end[b++])
+    if (end[b] - first > kInsertionRun) sort_bucket(a + first, tmp + first, end[b] - first);
+}
+
+}  // namespace detail
+
+// Sorts `items` ascending by (key, tie), given the least and greatest key. `scratch` must be at
+// least as long as `items`. Returns the sorted records: `items` itself, or the front of
+// `scratch`, whichever saves a copy. Requires items.size() < 2^32.
+inline std::span<KeyedRecord> sort_keyed(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch,
+                                         std::uint64_t lo, std::uint64_t hi) {
+  const std::size_t n = items.size();
+  if (lo == hi) {
+    detail::sort_ties(items.data(), n);
+    return items;
+  }
+  if (n <= detail::kInsertionRun) {
+    detail::insertion_sort(items.data(), n);
+    return items;
+  }
+  // Measured: half as many buckets as records is best for a few thousand records (less to
+  // clear and scan), as many as records beyond (less left to the insertion pass).
+  std::uint32_t end[1 << 14];
+  const int extra_bits = n < (std::size_t{1} << 16) ? -1 : 0;
+  const std::size_t buckets = detail::scatter<14>(items.data(), scratch.data(), n, lo, hi, end, extra_bits);
+  for (std::size_t b = 0, first = 0; b < buckets; first = end[b++])
+    if (end[b] - first > detail::kInsertionRun) detail::sort_bucket(&scratch[first], &items[first], end[b] - first);
+  detail::insertion_sort(scratch.data(), n);
+  return scratch.first(n);
 }
 
 }  // namespace fnet

@@ -1,0 +1,25 @@
+// Brute-force PD0 and PD1 of a frame: the answer the fast path (common/persistence.hpp) must give.
+#pragma once
+
+#include <cstddef>
+
+#include "common/diagram.hpp"
+#include "common/force_network.hpp"
+#include "common/frame.hpp"
+
+namespace fnet::reference {
+
+struct Diagrams {
+  Diagram pd0, pd1;  // birth descending, then death descending; zero-length points dropped
+  std::size_t vertices = 0, edges = 0, triangles = 0;
+  double mean_force = 0;  // the mean the values were normalized by
+};
+
+// Builds the filtration from the frame, reduces the full boundary matrix, and reads the pairs:
+// (f(positive simplex), f(negative simplex)); positive simplices never paired get death -1.
+Diagrams persistence(const Frame& frame, ForceKind kind);
+
+// The same, normalized by a given mean instead of the reference's own (see flag_filtration).
+Diagrams persistence(const Frame& frame, ForceKind kind, double mean);
+
+}  // namespace fnet::reference
