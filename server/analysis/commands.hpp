@@ -7,5 +7,6 @@
 namespace fnet::analyze {
 
 int diagram_command(const std::vector<std::string>& args);
+int distance_command(const std::vector<std::string>& args);
 
 }  // namespace fnet::analyze

@@ -16,6 +16,7 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  diagram   persistence diagrams (PD0, PD1) of one frame's force network\n"
+    "  distance  bottleneck or Wasserstein distance between two frames' diagrams\n"
     "\n"
     "Run 'fnet-analyze <command> --help' for the options of a command.\n";
 
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   using Command = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Command> commands = {
       {"diagram", fnet::analyze::diagram_command},
+      {"distance", fnet::analyze::distance_command},
   };
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
