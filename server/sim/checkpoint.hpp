@@ -1,0 +1,28 @@
+// Checkpoints: the whole state of a run in one binary file (native byte order, this build's
+// layout), so that a resumed run continues bit for bit as if never stopped: every kinematic
+// level, the forces, the Verlet list with its springs and its build reference, and the clock.
+// Written to a temporary file and renamed, so a kill leaves the previous checkpoint intact.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "server/sim/simulation.hpp"
+
+namespace fnet::sim {
+
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+void save_checkpoint(const Simulation& s, const std::string& run_id, const std::filesystem::path& path);
+
+struct Restored {
+  Simulation simulation;
+  std::string run_id;
+};
+Restored load_checkpoint(const std::filesystem::path& path);
+
+}  // namespace fnet::sim

@@ -1,0 +1,229 @@
+// fnet-simd: the simulation daemon. Runs the paper's compression protocol and hands every frame
+// to the sinks selected on the command line.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
+
+#include "server/sim/checkpoint.hpp"
+#include "server/sim/csv_export.hpp"
+#include "server/sim/lammps_data.hpp"
+#include "server/sim/protocol.hpp"
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+using namespace fnet::sim;
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+
+std::string duration(double seconds) {
+  if (seconds < 0 || !std::isfinite(seconds)) return "?";
+  const auto s = static_cast<long long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%lldh%02lldm", s / 3600, s / 60 % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lldm%02llds", s / 60, s % 60);
+  return buf;
+}
+
+void print_progress(const Progress& p) {
+  if (p.phase == Phase::relax) {
+    std::fprintf(stderr, "fnet-simd: relaxing  step %lld  KE/grain %.3g  rho %.4f  Z %.3f  %.0f steps/s\n",
+                 static_cast<long long>(p.step), p.kinetic_energy, p.rho, p.z, p.steps_per_second);
+  } else {
+    std::fprintf(stderr,
+                 "fnet-simd: %s  rho %.4f  Z %.3f  frames %zu/%zu  step %lld/%lld  %.0f steps/s  ETA %s\n",
+                 p.phase == Phase::done ? "done" : "compressing", p.rho, p.z, p.frames_done, p.frames,
+                 static_cast<long long>(p.compress_step), static_cast<long long>(p.compress_steps),
+                 p.steps_per_second, duration(p.eta_seconds).c_str());
+  }
+}
+
+constexpr const char* kUsage =
+    "usage: fnet-simd [options]\n"
+    "\n"
+    "Runs the compression of Kramár et al. (2014): 2D polydisperse frictional disks in a box of rough\n"
+    "walls, relaxed from a square lattice with random velocities, then compressed by walls moving\n"
+    "inward at v_c until rho = rho_final, with frames at fixed time intervals over the compression.\n"
+    "Units: lengths in d_ave, masses in the mean grain mass, speeds in d_ave/tau_c, times in tau_c\n"
+    "(k_n in m g/d_ave as in the paper). Parameters: defaults, then --config, then flags.\n"
+    "\n"
+    "Output: --export-csv DIR writes DIR/index.csv (frame,step,time,rho,Z) and per frame\n"
+    "DIR/frame_NNNN_particles.csv (id,x,y,r), DIR/frame_NNNN_contacts.csv (i,j,fn,ft; the input of\n"
+    "'fnet-analyze diagram') and DIR/frame_NNNN_wall_contacts.csv (grain,wall,side,fn,ft).\n"
+    "DDS publishing is NOT implemented yet: frames are never published; --no-dds says so explicitly\n"
+    "and silences the note printed otherwise.\n"
+    "\n"
+    "Checkpoints: with --checkpoint FILE (default DIR/checkpoint.fnetsim with --export-csv) the state\n"
+    "is saved after every frame, every --checkpoint-interval seconds and on SIGINT/SIGTERM;\n"
+    "--resume continues from it and produces frames bitwise identical to an uninterrupted run.\n"
+    "\n"
+    "options";
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  Params defaults;
+  po::options_description options(kUsage);
+  std::string config, export_dir, checkpoint_path, run_id, integrator, lammps_data;
+  double checkpoint_interval = 60;
+  options.add_options()
+      ("help,h", "show this help")
+      ("config", po::value(&config), "JSON object of parameters (keys: the names in --show-params)")
+      ("particles", po::value<std::size_t>(), "number of grains N (default 2000)")
+      ("polydispersity", po::value<double>(), "r_p: diameters uniform in [1-r_p/2, 1+r_p/2] (default 0.4)")
+      ("mu", po::value<double>(), "Coulomb friction coefficient mu_s (default 0.5)")
+      ("kn", po::value<double>(), "normal spring constant k_n, m g/d (default 4000)")
+      ("en", po::value<double>(), "normal restitution of two mean grains (default 0.5)")
+      ("kt-ratio", po::value<double>(), "k_t / k_n (default 0.8)")
+      ("compression-speed", po::value<double>(), "wall speed v_c, d/tau_c (default 2.5e-5)")
+      ("dt-divisor", po::value<double>(), "time step = tau_c / this (default 50)")
+      ("rho-final", po::value<double>(), "packing fraction that ends the compression (default 0.90)")
+      ("frames", po::value<std::size_t>(), "frames over the compression, first and last included (default 100)")
+      ("seed", po::value<std::uint64_t>(), "random seed: diameters and initial velocities (default 1)")
+      ("box", po::value<double>(), "initial side of the free interior, d (default 50)")
+      ("wall-diameter", po::value<double>(), "diameter of the wall particles, d (default 1)")
+      ("initial-speed", po::value<double>(), "initial speeds uniform in a disk of this radius, d/tau_c (default 0.1)")
+      ("relax-energy", po::value<double>(), "relaxation ends below this kinetic energy per grain, m d^2/tau_c^2 (default 1e-7)")
+      ("relax-max-time", po::value<double>(), "longest relaxation, tau_c (default 2e5)")
+      ("skin", po::value<double>(), "Verlet-list skin, d (default 0.15)")
+      ("integrator", po::value(&integrator), "gear (the paper's, default) or verlet")
+      ("run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")
+      ("export-csv", po::value(&export_dir), "write frames as CSV files into this directory")
+      ("no-dds", "do not publish frames over DDS (publishing is not implemented yet in any case)")
+      ("checkpoint", po::value(&checkpoint_path), "checkpoint file")
+      ("checkpoint-interval", po::value(&checkpoint_interval)->default_value(60), "seconds between checkpoints")
+      ("resume", "continue the run saved in the checkpoint file (its parameters are used)")
+      ("write-lammps-data", po::value(&lammps_data), "write the initial state as a LAMMPS data file, then run")
+      ("show-params", "print the parameters and derived constants as JSON and exit")
+      ("quiet,q", "no progress reports on stderr");
+  po::variables_map vm;
+  po::store(po::parse_command_line(argc, argv, options), vm);
+  if (vm.count("help")) {
+    std::cout << options << "\n";
+    return 0;
+  }
+  po::notify(vm);
+
+  Params p = defaults;
+  if (!config.empty()) {
+    std::ifstream in(config);
+    if (!in) throw std::runtime_error(config + ": cannot open config file");
+    apply_json(p, nlohmann::json::parse(in));
+  }
+  const char* physics_flags[] = {"particles", "polydispersity", "mu", "kn", "en", "kt-ratio",
+                                 "compression-speed", "dt-divisor", "rho-final", "frames", "seed", "box",
+                                 "wall-diameter", "initial-speed", "relax-energy", "relax-max-time", "skin",
+                                 "integrator", "config"};
+  if (vm.count("particles")) p.particles = vm["particles"].as<std::size_t>();
+  if (vm.count("polydispersity")) p.polydispersity = vm["polydispersity"].as<double>();
+  if (vm.count("mu")) p.mu = vm["mu"].as<double>();
+  if (vm.count("kn")) p.kn = vm["kn"].as<double>();
+  if (vm.count("en")) p.en = vm["en"].as<double>();
+  if (vm.count("kt-ratio")) p.kt_ratio = vm["kt-ratio"].as<double>();
+  if (vm.count("compression-speed")) p.compression_speed = vm["compression-speed"].as<double>();
+  if (vm.count("dt-divisor")) p.dt_divisor = vm["dt-divisor"].as<double>();
+  if (vm.count("rho-final")) p.rho_final = vm["rho-final"].as<double>();
+  if (vm.count("frames")) p.frames = vm["frames"].as<std::size_t>();
+  if (vm.count("seed")) p.seed = vm["seed"].as<std::uint64_t>();
+  if (vm.count("box")) p.box = vm["box"].as<double>();
+  if (vm.count("wall-diameter")) p.wall_diameter = vm["wall-diameter"].as<double>();
+  if (vm.count("initial-speed")) p.initial_speed = vm["initial-speed"].as<double>();
+  if (vm.count("relax-energy")) p.relax_energy = vm["relax-energy"].as<double>();
+  if (vm.count("relax-max-time")) p.relax_max_time = vm["relax-max-time"].as<double>();
+  if (vm.count("skin")) p.skin = vm["skin"].as<double>();
+  if (!integrator.empty()) p.integrator = parse_integrator(integrator);
+  validate(p);
+
+  if (vm.count("show-params")) {
+    const Constants c = derive(p);
+    nlohmann::json j = {{"params", to_json(p)},
+                        {"derived", {{"tau_c", c.tau_c}, {"gamma_n", c.gamma_n}, {"dt", c.dt},
+                                     {"kt", c.kt}, {"wall_speed_internal", c.wall_speed}}}};
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+
+  const bool resume = vm.count("resume") > 0;
+  if (checkpoint_path.empty() && !export_dir.empty()) checkpoint_path = (fs::path(export_dir) / "checkpoint.fnetsim").string();
+  if (resume) {
+    if (checkpoint_path.empty()) throw po::error("--resume needs --checkpoint FILE or --export-csv DIR");
+    for (const char* flag : physics_flags)
+      if (vm.count(flag)) throw po::error(std::string("--") + flag + " cannot change a resumed run (its parameters come from the checkpoint)");
+  }
+  if (!vm.count("no-dds"))
+    std::fprintf(stderr,
+                 "fnet-simd: note: DDS publishing is not implemented yet; frames are NOT published "
+                 "(pass --no-dds to acknowledge and silence this note)\n");
+  if (export_dir.empty())
+    std::fprintf(stderr, "fnet-simd: note: no --export-csv directory: frames are computed but written nowhere\n");
+
+  Simulation sim;
+  if (resume) {
+    Restored r = load_checkpoint(checkpoint_path);
+    sim = std::move(r.simulation);
+    if (run_id.empty()) run_id = r.run_id;
+    std::fprintf(stderr, "fnet-simd: resumed %s at step %lld (%zu of %zu frames done)\n", run_id.c_str(),
+                 static_cast<long long>(sim.step), sim.next_frame, sim.params.frames);
+  } else {
+    sim = make_lattice(p);
+  }
+  if (run_id.empty()) run_id = "fnet-simd-seed" + std::to_string(sim.params.seed);
+  if (!lammps_data.empty()) write_lammps_data(sim, lammps_data);
+
+  RunOptions o;
+  o.run_id = run_id;
+  if (!export_dir.empty()) {
+    prepare_csv_dir(export_dir, resume && sim.phase != Phase::relax ? sim.next_frame : 0);
+    o.sink = [dir = fs::path(export_dir)](const FrameSnapshot& f) { write_frame_csv(dir, f); };
+  }
+  if (!checkpoint_path.empty()) {
+    o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path); };
+    o.checkpoint_seconds = checkpoint_interval;
+  }
+  if (!vm.count("quiet")) o.progress = print_progress;
+  o.should_stop = [] { return g_stop.load(); };
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  const std::int64_t steps_before = sim.step;
+  const auto started = std::chrono::steady_clock::now();
+  const bool finished = run(sim, o);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const auto steps = static_cast<double>(sim.step - steps_before);
+  if (!vm.count("quiet") || finished)
+    std::fprintf(stderr, "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu)\n",
+                 static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
+                 steps * static_cast<double>(sim.n) / seconds, sim.n);
+  if (!finished) {
+    if (o.checkpoint) {
+      o.checkpoint(sim);
+      std::fprintf(stderr, "fnet-simd: stopped at step %lld; checkpoint %s (continue with --resume)\n",
+                   static_cast<long long>(sim.step), checkpoint_path.c_str());
+    } else {
+      std::fprintf(stderr, "fnet-simd: stopped at step %lld (no checkpoint file)\n", static_cast<long long>(sim.step));
+    }
+    return 130;
+  }
+  return 0;
+} catch (const po::error& e) {
+  std::cerr << "fnet-simd: " << e.what() << " (see --help)\n";
+  return 2;
+} catch (const std::exception& e) {
+  std::cerr << "fnet-simd: " << e.what() << "\n";
+  return 1;
+}

@@ -1,0 +1,23 @@
+// Time integration of the grains (translation and rotation).
+//
+// Gear's predictor–corrector for second-order equations with five values (x and its first four
+// scaled derivatives): the predictor is the Taylor (Pascal-triangle) step, the corrector scales
+// the difference between the acceleration from the forces at the predicted state and the
+// predicted one by (19/120, 3/4, 1, 1/2, 1/12) (Allen & Tildesley, Sec. 3.2). The forces see the
+// predicted positions and velocities, as velocity-dependent (damped) forces require.
+//
+// Velocity Verlet, for comparison: half kick, drift, forces at (x(t+Δt), v(t+Δt/2)), half kick
+// (LAMMPS's fix nve/sphere does the same).
+#pragma once
+
+namespace fnet::sim {
+
+struct Simulation;
+
+// Each returns the largest squared displacement of a grain since the last list build.
+double gear_predict(Simulation& s);
+void gear_correct(Simulation& s);
+double verlet_first_half(Simulation& s);
+void verlet_second_half(Simulation& s);
+
+}  // namespace fnet::sim
