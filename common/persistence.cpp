@@ -44,15 +44,19 @@ struct Neighbour {
   Index vertex, edge;
 };
 
-// Branch-free selection: compilers turn `c ? a : b` on unpredictable data into jumps more often
-// than not; masks they leave alone.
-inline Index pick(bool c, Index if_true, Index if_false) {
-  return if_false ^ ((if_false ^ if_true) & (Index{0} - c));
-}
+// Branch-free selection. Compilers turn `c ? a : b` into a jump when they guess it predictable;
+// telling them it is a coin flip gets a conditional move.
+#if defined(__GNUC__)
+#define FNET_COIN_FLIP(c) __builtin_expect_with_probability(static_cast<bool>(c), true, 0.5)
+#else
+#define FNET_COIN_FLIP(c) (c)
+#endif
+
+inline Index pick(bool c, Index if_true, Index if_false) { return FNET_COIN_FLIP(c) ? if_true : if_false; }
 
 inline double pick(bool c, double if_true, double if_false) {
   const auto t = std::bit_cast<std::uint64_t>(if_true), f = std::bit_cast<std::uint64_t>(if_false);
-  return std::bit_cast<double>(f ^ ((f ^ t) & (std::uint64_t{0} - c)));
+  return std::bit_cast<double>(FNET_COIN_FLIP(c) ? t : f);
 }
 
 // (min, max) without a jump.

@@ -37,4 +37,10 @@ struct RunFileContents {
 // Reads a whole run file; throws h5::Error naming the file and what is missing or malformed.
 RunFileContents read_run_file(const std::filesystem::path& path);
 
+// Shared with the analysis store, which records the same run parameters and frame headers.
+void write_run_info(hid_t root, const RunInfo& info);
+RunInfo read_run_info(hid_t root, const std::string& where);
+void write_frame_header(hid_t group, const FrameHeader& header);
+FrameHeader read_frame_header(hid_t group, const std::string& run_id, const std::string& where);
+
 }  // namespace fnet

@@ -17,6 +17,8 @@ constexpr const char* kUsage =
     "commands:\n"
     "  diagram   persistence diagrams (PD0, PD1) of one frame's force network\n"
     "  distance  bottleneck or Wasserstein distance between two frames' diagrams\n"
+    "  store     analyze a recorded run (run file or CSV folder) into a run store, as fnet-server does\n"
+    "  publish   replay a recorded run onto DDS, as fnet-simd streams it\n"
     "\n"
     "Run 'fnet-analyze <command> --help' for the options of a command.\n";
 
@@ -27,6 +29,8 @@ int main(int argc, char** argv) {
   const std::map<std::string, Command> commands = {
       {"diagram", fnet::analyze::diagram_command},
       {"distance", fnet::analyze::distance_command},
+      {"store", fnet::analyze::store_command},
+      {"publish", fnet::analyze::publish_command},
   };
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {

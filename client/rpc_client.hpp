@@ -1,0 +1,57 @@
+// A blocking JSON-RPC client for fnet-server: one TCP connection, one request at a time, and
+// notifications read off the same connection (for watch).
+#pragma once
+
+#include <utility>  // Boost 1.74's asio needs it first under C++20
+
+#include <boost/asio.hpp>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace fnet::client {
+
+using json = nlohmann::json;
+
+// The server could not be reached or the connection broke.
+class ConnectionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The server answered with a JSON-RPC error.
+class CallError : public std::runtime_error {
+ public:
+  CallError(int code, const std::string& message, json data) : std::runtime_error(message), code_(code), data_(std::move(data)) {}
+  int code() const { return code_; }
+  const json& data() const { return data_; }
+
+ private:
+  int code_;
+  json data_;
+};
+
+class RpcClient {
+ public:
+  RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout = std::chrono::seconds(30));
+
+  // Sends a request and returns its result; notifications that arrive first are kept for next_notification().
+  json call(const std::string& method, const json& params = json::object());
+  // Waits up to `timeout` for a notification; nullopt on timeout.
+  std::optional<json> next_notification(std::chrono::milliseconds timeout);
+
+ private:
+  std::optional<json> read_message(std::chrono::milliseconds timeout);
+
+  boost::asio::io_context io_;
+  boost::asio::ip::tcp::socket socket_;
+  boost::asio::streambuf input_;
+  std::chrono::milliseconds timeout_;
+  std::int64_t next_id_ = 1;
+  std::vector<json> pending_notifications_;
+};
+
+}  // namespace fnet::client

@@ -1,0 +1,54 @@
+// JSON-RPC 2.0 messages: error codes (standard and fnet's own), responses, notifications.
+// The codes are the contract of proto/api.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace fnet::rpc {
+
+using json = nlohmann::json;
+
+enum Code : int {
+  kParseError = -32700,
+  kInvalidRequest = -32600,
+  kMethodNotFound = -32601,
+  kInvalidParams = -32602,
+  kInternalError = -32603,
+  // fnet's application codes
+  kUnknownRun = -32001,
+  kUnknownFrame = -32002,
+  kTooManySubscriptions = -32003,
+  kServerBusy = -32004,
+};
+
+// Thrown by method handlers; becomes an error response with this code, message and data.
+class Error : public std::runtime_error {
+ public:
+  Error(int code, const std::string& message, json data = nullptr)
+      : std::runtime_error(message), code_(code), data_(std::move(data)) {}
+  int code() const { return code_; }
+  const json& data() const { return data_; }
+
+ private:
+  int code_;
+  json data_;
+};
+
+inline json response(const json& id, json result) {
+  return {{"jsonrpc", "2.0"}, {"id", id}, {"result", std::move(result)}};
+}
+
+inline json error_response(const json& id, int code, const std::string& message, const json& data = nullptr) {
+  json error = {{"code", code}, {"message", message}};
+  if (!data.is_null()) error["data"] = data;
+  return {{"jsonrpc", "2.0"}, {"id", id}, {"error", std::move(error)}};
+}
+
+inline json notification(const std::string& method, json params) {
+  return {{"jsonrpc", "2.0"}, {"method", method}, {"params", std::move(params)}};
+}
+
+}  // namespace fnet::rpc

@@ -1,0 +1,94 @@
+// Newline-delimited JSON-RPC 2.0 over TCP (Boost.Asio). One request per line, one response per
+// line; handlers may also push notifications to their session at any time, from any thread.
+// Everything a client can make the server hold is bounded: line length, connections, bytes
+// queued for a client that does not read (that client is dropped).
+#pragma once
+
+// Boost 1.74's asio/awaitable.hpp uses std::exchange without including <utility> (C++20).
+#include <utility>
+
+#include <boost/asio.hpp>
+
+#include <atomic>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "server/analysis/json_rpc.hpp"
+
+namespace fnet::rpc {
+
+struct ServerLimits {
+  std::size_t max_line_bytes = 1 << 20;        // a longer request gets an error and the connection closes
+  std::size_t max_connections = 256;           // beyond: an error line, then close
+  std::size_t max_queued_bytes = 16 << 20;     // unread output beyond this drops the client
+};
+
+class Session;
+
+// Called on a server thread for each well-formed request; returns the result or throws rpc::Error.
+using Handler = std::function<json(const std::string& method, const json& params, const std::shared_ptr<Session>& session)>;
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  Session(boost::asio::ip::tcp::socket socket, const ServerLimits& limits, const Handler& handler,
+          std::function<void()> on_end);
+  ~Session();
+
+  void start();
+  // Queues one JSON message for this client; thread-safe. Drops the client when its unread
+  // output exceeds the limit. Returns false once the session is closed.
+  bool send(const json& message);
+  bool closed() const { return closed_; }
+  std::uint64_t id() const { return id_; }
+  // Called once when the session ends (to release subscriptions).
+  void on_close(std::function<void()> fn);
+
+ private:
+  void read_next();
+  void handle_line(const std::string& line);
+  void write_next();
+  void finish();
+  void drain(const std::shared_ptr<boost::asio::steady_timer>& timer);
+  void close();
+
+  boost::asio::ip::tcp::socket socket_;
+  boost::asio::strand<boost::asio::any_io_executor> strand_;
+  boost::asio::streambuf input_;
+  const ServerLimits& limits_;
+  const Handler& handler_;
+  std::function<void()> on_end_;
+  std::mutex mutex_;  // guards the output queue and close callbacks (send() is called from any thread)
+  std::deque<std::string> output_;
+  std::size_t queued_bytes_ = 0;
+  bool writing_ = false;
+  bool close_when_flushed_ = false;
+  std::vector<std::function<void()>> close_callbacks_;
+  std::atomic<bool> closed_{false};
+  std::uint64_t id_;
+};
+
+class Server {
+ public:
+  // Binds to `address`:`port` (port 0 picks a free one) and starts accepting.
+  Server(boost::asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
+         ServerLimits limits = {});
+  unsigned short port() const;
+  std::size_t connections() const { return connections_; }
+  void stop();
+
+ private:
+  void accept_next();
+
+  boost::asio::io_context& io_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  Handler handler_;
+  ServerLimits limits_;
+  std::atomic<std::size_t> connections_{0};
+};
+
+}  // namespace fnet::rpc

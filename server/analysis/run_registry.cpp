@@ -1,0 +1,367 @@
+#include "server/analysis/run_registry.hpp"
+
+#include <boost/asio/post.hpp>
+
+#include <iostream>
+
+#include "common/frame_analysis.hpp"
+
+namespace fnet::server {
+
+Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits)
+    : data_dir_(std::move(data_dir)), pool_(pool), limits_(limits) {
+  std::filesystem::create_directories(data_dir_);
+}
+
+std::vector<std::string> Registry::load() {
+  std::vector<std::string> problems;
+  std::lock_guard lock(mutex_);
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir_)) {
+    if (entry.path().extension() != ".h5") continue;
+    try {
+      StoredRun stored = read_store(entry.path());
+      Run& run = run_locked(stored.info.run_id);
+      run.has_info = stored.has_info;
+      if (stored.has_info) run.info = stored.info;
+      for (AnalyzedFrame& f : stored.frames) {
+        const std::uint32_t index = f.header.index;
+        run.seen.insert(index);
+        run.last_accepted = index;
+        run.committed[index] = std::make_shared<const AnalyzedFrame>(std::move(f));
+      }
+      for (const RejectedFrame& r : stored.rejected) run.seen.insert(r.index);
+      run.rejected = std::move(stored.rejected);
+      run.frontier = run.seen.empty() ? 0 : *run.seen.rbegin() + 1;
+    } catch (const std::exception& e) {
+      problems.push_back(e.what());
+    }
+  }
+  return problems;
+}
+
+Registry::Run& Registry::run_locked(const std::string& run_id) {
+  auto [it, created] = runs_.try_emplace(run_id);
+  Run& run = it->second;
+  if (created) {
+    run.run_id = run_id;
+    run.info.run_id = run_id;
+    try {
+      run.store = std::make_unique<StoreWriter>(store_path(data_dir_, run_id), run_id);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+  }
+  return run;
+}
+
+void Registry::store_error_locked(Run& run, const std::exception& e) {
+  // The analysis goes on in memory; the store stays as it was up to the failure.
+  std::cerr << "fnet-server: store of run " << run.run_id << ": " << e.what() << "\n";
+}
+
+void Registry::on_info(const RunInfo& info) {
+  std::lock_guard lock(mutex_);
+  if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
+    ++counters_.malformed;
+    recent_rejections_.push_back("run announcement rejected: " + problem);
+    return;
+  }
+  Run& run = run_locked(info.run_id);
+  if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
+  run.has_info = true;
+  run.info = info;
+  if (run.store) try {
+      run.store->write_info(info);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+}
+
+void Registry::on_malformed(const std::string& reason) {
+  std::lock_guard lock(mutex_);
+  ++counters_.malformed;
+  recent_rejections_.push_back(reason);
+  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+}
+
+void Registry::on_frame(RunFrame frame) {
+  std::unique_lock lock(mutex_);
+  ++counters_.received;
+  if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
+    ++counters_.malformed;
+    recent_rejections_.push_back(frame.frame.label + ": rejected: " + problem);
+    return;
+  }
+  Run& run = run_locked(frame.header.run_id);
+  const std::uint32_t index = frame.header.index;
+  run.last_frame_at = Clock::now();
+  if (!run.seen.insert(index).second) {
+    ++run.duplicates;
+    ++counters_.duplicates;
+    return;
+  }
+  if (index < run.frontier) {  // its place was given up after the gap timeout
+    ++counters_.late;
+    reject_locked(run, index, frame.frame.label + ": arrived after the gap timeout had skipped it");
+    return;
+  }
+  Slot& slot = run.pending[index];
+  slot.header = frame.header;
+  slot.arrived = Clock::now();
+  ++in_flight_;
+  boost::asio::post(pool_, [this, id = run.run_id, index, f = std::move(frame)]() mutable { analyze(id, index, std::move(f)); });
+}
+
+void Registry::analyze(std::string run_id, std::uint32_t index, RunFrame frame) {
+  std::shared_ptr<const FrameDiagramSet> diagrams;
+  std::string reason;
+  try {
+    validate(frame.frame);
+    diagrams = std::make_shared<const FrameDiagramSet>(analyze_frame(frame.frame));
+  } catch (const std::exception& e) {
+    reason = e.what();
+  }
+  std::lock_guard lock(mutex_);
+  Run& run = runs_.at(run_id);
+  Slot& slot = run.pending.at(index);
+  if (diagrams) {
+    slot.stage = Stage::analyzed;
+    slot.diagrams = std::move(diagrams);
+  } else {
+    slot.stage = Stage::rejected;
+    slot.reason = reason;
+  }
+  advance_locked(run);
+}
+
+void Registry::measure(std::string run_id, std::uint32_t index, std::shared_ptr<const FrameDiagramSet> previous,
+                       std::shared_ptr<const FrameDiagramSet> current) {
+  const StepDistances distances = step_distances(*previous, *current);
+  std::lock_guard lock(mutex_);
+  Run& run = runs_.at(run_id);
+  Slot& slot = run.pending.at(index);
+  slot.distances = distances;
+  slot.stage = Stage::ready;
+  commit_locked(run);
+}
+
+// Resolves frames at the frontier in index order: a rejected frame is recorded; an analyzed one
+// learns its predecessor (the last accepted frame) and goes to have its distances measured.
+void Registry::advance_locked(Run& run) {
+  while (true) {
+    const auto it = run.pending.find(run.frontier);
+    if (it == run.pending.end() || it->second.stage == Stage::analyzing) break;
+    Slot& slot = it->second;
+    if (slot.stage == Stage::analyzed) {
+      slot.previous = run.last_accepted;
+      run.last_accepted = run.frontier;
+      if (slot.previous) {
+        std::shared_ptr<const FrameDiagramSet> previous;
+        if (const auto c = run.committed.find(*slot.previous); c != run.committed.end())
+          previous = std::shared_ptr<const FrameDiagramSet>(c->second, &c->second->diagrams);
+        else
+          previous = run.pending.at(*slot.previous).diagrams;
+        slot.stage = Stage::measuring;
+        boost::asio::post(pool_, [this, id = run.run_id, index = run.frontier, previous, current = slot.diagrams] {
+          measure(id, index, previous, current);
+        });
+      } else {
+        slot.stage = Stage::ready;
+      }
+    }
+    ++run.frontier;
+  }
+  commit_locked(run);
+}
+
+// Commits the leading run of finished frames: the store and the subscribers see index order.
+void Registry::commit_locked(Run& run) {
+  while (!run.pending.empty()) {
+    auto it = run.pending.begin();
+    Slot& slot = it->second;
+    const std::uint32_t index = it->first;
+    if (slot.stage == Stage::rejected) {
+      reject_locked(run, index, slot.reason);
+    } else if (slot.stage == Stage::ready) {
+      auto frame = std::make_shared<AnalyzedFrame>();
+      frame->header = slot.header;
+      frame->diagrams = *slot.diagrams;
+      frame->previous = slot.previous;
+      frame->distances = slot.distances;
+      if (run.store) try {
+          run.store->append(*frame);
+        } catch (const std::exception& e) {
+          store_error_locked(run, e);
+        }
+      run.committed[index] = frame;
+      ++counters_.analyzed;
+      recent_commits_.push_back(Clock::now());
+      const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances};
+      for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
+        const bool keep = (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
+        s = keep ? std::next(s) : subscriptions_.erase(s);
+      }
+    } else {
+      break;  // still analyzing or measuring
+    }
+    run.pending.erase(it);
+    --in_flight_;
+  }
+  const auto horizon = Clock::now() - std::chrono::seconds(10);
+  while (!recent_commits_.empty() && recent_commits_.front() < horizon) recent_commits_.pop_front();
+}
+
+void Registry::reject_locked(Run& run, std::uint32_t index, const std::string& reason) {
+  const RejectedFrame rejected{index, reason};
+  run.rejected.push_back(rejected);
+  ++counters_.rejected;
+  recent_rejections_.push_back(reason);
+  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+  std::cerr << "fnet-server: rejected " << reason << "\n";
+  if (run.store) try {
+      run.store->append(rejected);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+}
+
+void Registry::check_gaps() {
+  std::lock_guard lock(mutex_);
+  const auto now = Clock::now();
+  for (auto& [id, run] : runs_) {
+    if (run.pending.empty() || run.pending.count(run.frontier)) continue;
+    const auto first = run.pending.begin();
+    if (first->first < run.frontier) continue;  // in progress, the frontier passed it
+    Clock::time_point oldest = now;
+    for (const auto& [index, slot] : run.pending) oldest = std::min(oldest, slot.arrived);
+    if (now - oldest < limits_.gap_timeout) continue;
+    const std::uint32_t skipped = first->first - run.frontier;
+    run.skipped += skipped;
+    counters_.skipped += skipped;
+    recent_rejections_.push_back("run " + id + ": frames " + std::to_string(run.frontier) + ".." +
+                                 std::to_string(first->first - 1) + " never arrived; skipped after the gap timeout");
+    run.frontier = first->first;
+    advance_locked(run);
+  }
+}
+
+std::size_t Registry::in_flight() const {
+  std::lock_guard lock(mutex_);
+  return in_flight_;
+}
+
+std::vector<RunSummary> Registry::runs() const {
+  std::vector<RunSummary> out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, run] : runs_) {
+    RunSummary s;
+    s.run_id = id;
+    s.has_info = run.has_info;
+    s.info = run.info;
+    s.frames = run.committed.size();
+    s.rejected = run.rejected.size();
+    s.pending = run.pending.size();
+    s.duplicates = run.duplicates;
+    s.skipped = run.skipped;
+    if (!run.committed.empty()) {
+      s.first_frame = run.committed.begin()->first;
+      s.last_frame = run.committed.rbegin()->first;
+      s.first_rho = run.committed.begin()->second->header.rho;
+      s.last_rho = run.committed.rbegin()->second->header.rho;
+      s.last_z = run.committed.rbegin()->second->header.z;
+    }
+    s.seconds_since_last_frame = std::chrono::duration<double>(Clock::now() - run.last_frame_at).count();
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::optional<RunSummary> Registry::run(const std::string& run_id) const {
+  for (RunSummary& s : runs())
+    if (s.run_id == run_id) return std::move(s);
+  return std::nullopt;
+}
+
+std::vector<RejectedFrame> Registry::rejected(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  return it == runs_.end() ? std::vector<RejectedFrame>{} : it->second.rejected;
+}
+
+std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> Registry::frames(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return std::nullopt;
+  std::vector<std::shared_ptr<const AnalyzedFrame>> out;
+  out.reserve(it->second.committed.size());
+  for (const auto& [index, frame] : it->second.committed) out.push_back(frame);
+  return out;
+}
+
+std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, std::uint32_t index) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return nullptr;
+  const auto f = it->second.committed.find(index);
+  return f == it->second.committed.end() ? nullptr : f->second;
+}
+
+std::string Registry::newest_run() const {
+  std::lock_guard lock(mutex_);
+  const Run* newest = nullptr;
+  for (const auto& [id, run] : runs_)
+    if (!newest || run.last_frame_at > newest->last_frame_at) newest = &run;
+  return newest ? newest->run_id : std::string();
+}
+
+std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener) {
+  std::lock_guard lock(mutex_);
+  const std::uint64_t subscription = next_subscription_++;
+  for (const auto& [id, run] : runs_) {
+    if (!run_id.empty() && id != run_id) continue;
+    for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end(); ++it)
+      if (!listener(subscription, {id, it->second->header, it->second->previous, it->second->distances})) return 0;
+  }
+  subscriptions_[subscription] = {run_id, std::move(listener)};
+  return subscription;
+}
+
+void Registry::unsubscribe(std::uint64_t id) {
+  std::lock_guard lock(mutex_);
+  subscriptions_.erase(id);
+}
+
+std::size_t Registry::subscriptions() const {
+  std::lock_guard lock(mutex_);
+  return subscriptions_.size();
+}
+
+Counters Registry::counters() const {
+  std::lock_guard lock(mutex_);
+  return counters_;
+}
+
+std::deque<std::string> Registry::recent_rejections() const {
+  std::lock_guard lock(mutex_);
+  return recent_rejections_;
+}
+
+double Registry::frames_per_second() const {
+  std::lock_guard lock(mutex_);
+  const auto horizon = Clock::now() - std::chrono::seconds(10);
+  std::size_t n = 0;
+  for (const auto& t : recent_commits_) n += t >= horizon;
+  return static_cast<double>(n) / 10.0;
+}
+
+double Registry::oldest_pending_seconds() const {
+  std::lock_guard lock(mutex_);
+  const auto now = Clock::now();
+  double oldest = 0;
+  for (const auto& [id, run] : runs_)
+    for (const auto& [index, slot] : run.pending)
+      oldest = std::max(oldest, std::chrono::duration<double>(now - slot.arrived).count());
+  return oldest;
+}
+
+}  // namespace fnet::server

@@ -1,0 +1,148 @@
+// Every run the server knows: frames flow in from the ingest thread, are analyzed on a bounded
+// thread pool in two stages (diagrams of each frame; then distances between consecutive accepted
+// frames, each pair independent), and are committed in index order to the run's store and to
+// the subscribers. Duplicates are dropped, out-of-order frames wait for their predecessors, a
+// frame missing for longer than the gap timeout is skipped, and a restart reloads every store.
+#pragma once
+
+#include <boost/asio/thread_pool.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/analysis_store.hpp"
+#include "common/run_frame.hpp"
+
+namespace fnet::server {
+
+using Clock = std::chrono::steady_clock;
+
+struct SeriesPoint {
+  std::string run_id;
+  FrameHeader header;
+  std::optional<std::uint32_t> previous;
+  StepDistances distances;
+};
+
+// Called with the subscription's id for each committed frame, under the registry's lock, in
+// commit order; must not block (it queues a message). Returning false removes the listener.
+using Listener = std::function<bool(std::uint64_t subscription, const SeriesPoint&)>;
+
+struct RunSummary {
+  std::string run_id;
+  bool has_info = false;
+  RunInfo info;
+  std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
+  std::optional<std::uint32_t> first_frame, last_frame;
+  double first_rho = 0, last_rho = 0, last_z = 0;
+  double seconds_since_last_frame = 0;
+};
+
+struct Counters {
+  std::size_t received = 0, analyzed = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0, malformed = 0;
+};
+
+struct RegistryLimits {
+  std::chrono::milliseconds gap_timeout{30000};  // a missing frame is skipped after this
+  std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
+};
+
+class Registry {
+ public:
+  Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits = {});
+
+  // Reads every store in the data directory; returns messages about stores that could not be read.
+  std::vector<std::string> load();
+
+  void on_info(const RunInfo& info);
+  void on_frame(RunFrame frame);
+  void on_malformed(const std::string& reason);
+  // Skips frames missing for longer than the gap timeout; call periodically.
+  void check_gaps();
+
+  // Frames received and not yet committed, over all runs (the ingest's back-pressure measure).
+  std::size_t in_flight() const;
+
+  std::vector<RunSummary> runs() const;
+  std::optional<RunSummary> run(const std::string& run_id) const;
+  std::vector<RejectedFrame> rejected(const std::string& run_id) const;
+  // Committed frames of a run in index order (copies; diagrams shared).
+  std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
+  std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
+  std::string newest_run() const;
+
+  // Registers a listener; `backlog` receives, under the same lock, every committed point of
+  // `run_id` (or of every run when empty) with frame index > since, so nothing is missed or
+  // repeated between the backlog and the live points.
+  std::uint64_t subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener);
+  void unsubscribe(std::uint64_t id);
+  std::size_t subscriptions() const;
+
+  Counters counters() const;
+  std::deque<std::string> recent_rejections() const;
+  double frames_per_second() const;  // commits over the last 10 s
+  double oldest_pending_seconds() const;
+
+ private:
+  enum class Stage { analyzing, analyzed, rejected, measuring, ready };
+  struct Slot {
+    Stage stage = Stage::analyzing;
+    FrameHeader header;
+    std::shared_ptr<const FrameDiagramSet> diagrams;
+    std::optional<std::uint32_t> previous;
+    StepDistances distances;
+    std::string reason;
+    Clock::time_point arrived;
+  };
+  struct Run {
+    std::string run_id;
+    bool has_info = false;
+    RunInfo info;
+    std::map<std::uint32_t, std::shared_ptr<const AnalyzedFrame>> committed;
+    std::vector<RejectedFrame> rejected;
+    std::set<std::uint32_t> seen;
+    std::map<std::uint32_t, Slot> pending;
+    std::uint32_t frontier = 0;
+    std::optional<std::uint32_t> last_accepted;
+    std::size_t duplicates = 0, skipped = 0;
+    Clock::time_point last_frame_at = Clock::now();
+    std::unique_ptr<StoreWriter> store;
+  };
+  struct Subscription {
+    std::string run_id;
+    Listener listener;
+  };
+
+  Run& run_locked(const std::string& run_id);
+  void analyze(std::string run_id, std::uint32_t index, RunFrame frame);
+  void measure(std::string run_id, std::uint32_t index, std::shared_ptr<const FrameDiagramSet> previous,
+               std::shared_ptr<const FrameDiagramSet> current);
+  void advance_locked(Run& run);
+  void commit_locked(Run& run);
+  void reject_locked(Run& run, std::uint32_t index, const std::string& reason);
+  void store_error_locked(Run& run, const std::exception& e);
+
+  const std::filesystem::path data_dir_;
+  boost::asio::thread_pool& pool_;
+  const RegistryLimits limits_;
+  mutable std::mutex mutex_;
+  std::map<std::string, Run> runs_;
+  std::map<std::uint64_t, Subscription> subscriptions_;
+  std::uint64_t next_subscription_ = 1;
+  Counters counters_;
+  std::deque<std::string> recent_rejections_;
+  std::deque<Clock::time_point> recent_commits_;
+  std::size_t in_flight_ = 0;
+};
+
+}  // namespace fnet::server

@@ -1,0 +1,45 @@
+#include "server/analysis/run_source.hpp"
+
+#include "common/analysis_store.hpp"
+#include "common/run_csv.hpp"
+#include "common/run_file.hpp"
+
+namespace fnet::analyze {
+
+namespace po = boost::program_options;
+
+void RunSource::add_options(po::options_description& options) {
+  options.add_options()
+      ("run-file", po::value(&run_file), "HDF5 run file written by fnet-simd --out")
+      ("csv-dir", po::value(&csv_dir), "folder exported by fnet-simd --export-csv (index.csv + frame_NNNN_*.csv)")
+      ("run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)");
+}
+
+std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
+  if (run_file.empty() == csv_dir.empty()) throw po::error("give exactly one of --run-file and --csv-dir");
+  RunInfo info;
+  std::vector<RunFrame> frames;
+  if (!run_file.empty()) {
+    RunFileContents contents = read_run_file(run_file);
+    info = std::move(contents.info);
+    frames = std::move(contents.frames);
+  } else {
+    if (run_id.empty()) throw po::error("--csv-dir needs --run-id");
+    frames = read_csv_run(csv_dir, run_id);
+    info.run_id = run_id;
+    info.frames = static_cast<std::uint32_t>(frames.size());
+    info.config_json = "{}";
+    if (!frames.empty()) info.particles = static_cast<std::uint32_t>(frames.front().frame.particle_count);
+  }
+  if (!run_id.empty()) {
+    info.run_id = run_id;
+    for (RunFrame& f : frames) {
+      f.header.run_id = run_id;
+      f.frame.label = frame_label(run_id, f.header.index);
+    }
+  }
+  if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) throw po::error(problem);
+  return {std::move(info), std::move(frames)};
+}
+
+}  // namespace fnet::analyze

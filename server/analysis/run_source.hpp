@@ -1,0 +1,20 @@
+// Where fnet-analyze's run-level commands read a run from: an HDF5 run file or a CSV folder.
+#pragma once
+
+#include <boost/program_options.hpp>
+
+#include <string>
+#include <vector>
+
+#include "common/run_frame.hpp"
+
+namespace fnet::analyze {
+
+struct RunSource {
+  std::string run_file, csv_dir, run_id;
+  void add_options(boost::program_options::options_description& options);
+  // Reads the run; the run id is the file's unless --run-id overrides it (required for CSV).
+  std::pair<RunInfo, std::vector<RunFrame>> read() const;
+};
+
+}  // namespace fnet::analyze
