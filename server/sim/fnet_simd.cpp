@@ -11,6 +11,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
@@ -18,6 +19,7 @@
 #include "server/sim/checkpoint.hpp"
 #include "server/sim/csv_export.hpp"
 #include "server/sim/lammps_data.hpp"
+#include "server/sim/output_sinks.hpp"
 #include "server/sim/protocol.hpp"
 
 namespace po = boost::program_options;
@@ -65,8 +67,8 @@ constexpr const char* kUsage =
     "Output: --export-csv DIR writes DIR/index.csv (frame,step,time,rho,Z) and per frame\n"
     "DIR/frame_NNNN_particles.csv (id,x,y,r), DIR/frame_NNNN_contacts.csv (i,j,fn,ft; the input of\n"
     "'fnet-analyze diagram') and DIR/frame_NNNN_wall_contacts.csv (grain,wall,side,fn,ft).\n"
-    "DDS publishing is NOT implemented yet: frames are never published; --no-dds says so explicitly\n"
-    "and silences the note printed otherwise.\n"
+    "Frames are published on Cyclone DDS (topics fnet_RunInfo, fnet_ForceFrame; reliable, keep-all,\n"
+    "transient-local) unless --no-dds; --out FILE also writes them to an HDF5 run file.\n"
     "\n"
     "Checkpoints: with --checkpoint FILE (default DIR/checkpoint.fnetsim with --export-csv) the state\n"
     "is saved after every frame, every --checkpoint-interval seconds and on SIGINT/SIGTERM;\n"
@@ -79,8 +81,9 @@ constexpr const char* kUsage =
 int main(int argc, char** argv) try {
   Params defaults;
   po::options_description options(kUsage);
-  std::string config, export_dir, checkpoint_path, run_id, integrator, lammps_data;
-  double checkpoint_interval = 60;
+  std::string config, export_dir, checkpoint_path, run_id, integrator, lammps_data, out_file;
+  double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
+  int domain = 0;
   options.add_options()
       ("help,h", "show this help")
       ("config", po::value(&config), "JSON object of parameters (keys: the names in --show-params)")
@@ -104,7 +107,13 @@ int main(int argc, char** argv) try {
       ("integrator", po::value(&integrator), "gear (the paper's, default) or verlet")
       ("run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")
       ("export-csv", po::value(&export_dir), "write frames as CSV files into this directory")
-      ("no-dds", "do not publish frames over DDS (publishing is not implemented yet in any case)")
+      ("out", po::value(&out_file), "write the run (parameters and every frame) to this HDF5 file (proto/run_file.md)")
+      ("no-dds", "do not publish frames over DDS")
+      ("domain", po::value(&domain)->default_value(0), "DDS domain id (configure Cyclone DDS with CYCLONEDDS_URI)")
+      ("ack-timeout", po::value(&ack_timeout)->default_value(60),
+       "seconds to wait at the end until every subscriber acknowledged every frame")
+      ("linger", po::value(&linger)->default_value(0),
+       "seconds to keep serving late subscribers from the durability history after the last frame")
       ("checkpoint", po::value(&checkpoint_path), "checkpoint file")
       ("checkpoint-interval", po::value(&checkpoint_interval)->default_value(60), "seconds between checkpoints")
       ("resume", "continue the run saved in the checkpoint file (its parameters are used)")
@@ -165,12 +174,9 @@ int main(int argc, char** argv) try {
     for (const char* flag : physics_flags)
       if (vm.count(flag)) throw po::error(std::string("--") + flag + " cannot change a resumed run (its parameters come from the checkpoint)");
   }
-  if (!vm.count("no-dds"))
-    std::fprintf(stderr,
-                 "fnet-simd: note: DDS publishing is not implemented yet; frames are NOT published "
-                 "(pass --no-dds to acknowledge and silence this note)\n");
-  if (export_dir.empty())
-    std::fprintf(stderr, "fnet-simd: note: no --export-csv directory: frames are computed but written nowhere\n");
+  const bool publish = !vm.count("no-dds");
+  if (!publish && export_dir.empty() && out_file.empty())
+    std::fprintf(stderr, "fnet-simd: note: --no-dds and no --export-csv or --out: frames are computed but written nowhere\n");
 
   Simulation sim;
   if (resume) {
@@ -187,10 +193,27 @@ int main(int argc, char** argv) try {
 
   RunOptions o;
   o.run_id = run_id;
+  const std::size_t first_frame = resume && sim.phase != Phase::relax ? sim.next_frame : 0;
+  const fnet::RunInfo info = run_info(sim.params, run_id);
+  std::vector<FrameSink> sinks;
   if (!export_dir.empty()) {
-    prepare_csv_dir(export_dir, resume && sim.phase != Phase::relax ? sim.next_frame : 0);
-    o.sink = [dir = fs::path(export_dir)](const FrameSnapshot& f) { write_frame_csv(dir, f); };
+    prepare_csv_dir(export_dir, first_frame);
+    sinks.push_back([dir = fs::path(export_dir)](const FrameSnapshot& f) { write_frame_csv(dir, f); });
   }
+  std::optional<RunFileSink> run_file;
+  if (!out_file.empty()) {
+    run_file.emplace(out_file, info, resume, first_frame);
+    sinks.push_back([&run_file](const FrameSnapshot& f) { (*run_file)(f); });
+  }
+  std::optional<DdsSink> dds;
+  if (publish) {
+    dds.emplace(static_cast<dds_domainid_t>(domain), info);
+    sinks.push_back([&dds](const FrameSnapshot& f) { (*dds)(f); });
+  }
+  if (!sinks.empty())
+    o.sink = [&sinks](const FrameSnapshot& f) {
+      for (const FrameSink& sink : sinks) sink(f);
+    };
   if (!checkpoint_path.empty()) {
     o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path); };
     o.checkpoint_seconds = checkpoint_interval;
@@ -209,6 +232,11 @@ int main(int argc, char** argv) try {
     std::fprintf(stderr, "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu)\n",
                  static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
                  steps * static_cast<double>(sim.n) / seconds, sim.n);
+  run_file.reset();  // closed now: readers need not wait while late DDS subscribers are served
+  if (dds) {
+    if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");
+    dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
+  }
   if (!finished) {
     if (o.checkpoint) {
       o.checkpoint(sim);

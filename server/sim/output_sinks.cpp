@@ -1,0 +1,55 @@
+#include "server/sim/output_sinks.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+namespace fnet::sim {
+
+RunInfo run_info(const Params& p, const std::string& run_id) {
+  RunInfo info;
+  info.run_id = run_id;
+  info.particles = static_cast<std::uint32_t>(p.particles);
+  info.polydispersity = p.polydispersity;
+  info.friction = p.mu;
+  info.k_n = p.kn;
+  info.restitution = p.en;
+  info.kt_over_kn = p.kt_ratio;
+  info.compression_speed = p.compression_speed;
+  info.dt = derive(p).dt;
+  info.final_density = p.rho_final;
+  info.frames = static_cast<std::uint32_t>(p.frames);
+  info.seed = p.seed;
+  info.config_json = to_json(p).dump();
+  return info;
+}
+
+RunFrame run_frame(const FrameSnapshot& s) {
+  RunFrame f;
+  f.header = {s.run_id, static_cast<std::uint32_t>(s.index), static_cast<std::uint64_t>(s.step), s.time, s.rho, s.z};
+  f.frame = s.frame;
+  f.frame.label = frame_label(s.run_id, f.header.index);
+  f.wall_contacts.reserve(s.wall_contacts.size());
+  for (const WallContact& w : s.wall_contacts)
+    f.wall_contacts.push_back({static_cast<std::uint32_t>(w.grain), w.fn, w.ft});
+  return f;
+}
+
+DdsSink::DdsSink(dds_domainid_t domain, const RunInfo& info) : publisher_(domain) { publisher_.publish(info); }
+
+void DdsSink::operator()(const FrameSnapshot& snapshot) { publisher_.publish(run_frame(snapshot)); }
+
+void DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
+  publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger_seconds);
+  while (std::chrono::steady_clock::now() < until && !should_stop()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+}
+
+RunFileSink::RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame)
+    : writer_(resume && std::filesystem::exists(path)
+                  ? std::make_unique<RunFileWriter>(RunFileWriter::reopen(path, static_cast<std::uint32_t>(first_frame)))
+                  : std::make_unique<RunFileWriter>(path, info)) {}
+
+void RunFileSink::operator()(const FrameSnapshot& snapshot) { writer_->append(run_frame(snapshot)); }
+
+}  // namespace fnet::sim

@@ -1,0 +1,47 @@
+// The outputs of fnet-simd beyond CSV: frames published on DDS (fnet_RunInfo, fnet_ForceFrame)
+// and the HDF5 run file. Both translate the engine's snapshot into the shared RunFrame.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "common/frame_transport.hpp"
+#include "common/run_file.hpp"
+#include "server/sim/params.hpp"
+#include "server/sim/snapshot.hpp"
+
+namespace fnet::sim {
+
+RunInfo run_info(const Params& params, const std::string& run_id);
+RunFrame run_frame(const FrameSnapshot& snapshot);
+
+// Publishes the run's announcement on construction and every frame handed to it.
+class DdsSink {
+ public:
+  DdsSink(dds_domainid_t domain, const RunInfo& info);
+  void operator()(const FrameSnapshot& snapshot);
+  // At the end of a run: waits (bounded) until every matched reader has every frame, then keeps
+  // serving late readers from the durability history for `linger` seconds.
+  // Stops lingering early once should_stop() is true.
+  void finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
+
+ private:
+  dds::FramePublisher publisher_;
+};
+
+// Appends every frame to the run file; on resume it reopens the file and drops frames from
+// `first_frame` on, which the resumed run writes again.
+class RunFileSink {
+ public:
+  RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame);
+  void operator()(const FrameSnapshot& snapshot);
+
+ private:
+  std::unique_ptr<RunFileWriter> writer_;
+};
+
+}  // namespace fnet::sim

@@ -1,0 +1,125 @@
+// fnet-simd streaming for real: a subscriber on loopback receives every frame of a short run
+// bit-exact (the HDF5 run file written alongside is the reference), and fnet-server's series for
+// that run equals the offline analysis of the run file.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <regex>
+#include <thread>
+
+#include "client/rpc_client.hpp"
+#include "common/analysis_store.hpp"
+#include "common/frame_transport.hpp"
+#include "common/run_file.hpp"
+#include "tests/e2e/process.hpp"
+
+namespace fnet::e2e {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "fnet-simd-e2e-XXXXXX").string();
+    path = mkdtemp(tmpl.data());
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// A short, fast compression: 150 disks at 40x the paper's wall speed, 8 frames.
+std::vector<std::string> small_run(const std::string& run_id, int domain, const fs::path& out) {
+  return {"--particles", "150", "--box", "13.7", "--compression-speed", "2e-3", "--frames", "8", "--seed", "11",
+          "--run-id", run_id, "--domain", std::to_string(domain), "--out", out.string(), "--linger", "30", "--quiet"};
+}
+
+TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
+  TempDir tmp;
+  // The daemon starts first (no DDS in this process before the fork); the subscriber joins late
+  // and is served from the durability history while the daemon lingers.
+  Process simd(FNET_SIMD, small_run("bits", 41, tmp.path / "run.h5"), tmp.path / "simd.log", dds_environment());
+  setenv("CYCLONEDDS_URI", dds_environment().at("CYCLONEDDS_URI").c_str(), 1);
+  dds::FrameSubscriber subscriber(41);
+  std::vector<RunFrame> got;
+  std::vector<RunInfo> infos;
+  const auto deadline = std::chrono::steady_clock::now() + 300s;
+  while (got.size() < 8 && std::chrono::steady_clock::now() < deadline) {
+    dds::Received r = subscriber.take(DDS_MSECS(200));
+    for (auto& f : r.frames) got.push_back(std::move(f));
+    for (auto& i : r.infos) infos.push_back(std::move(i));
+    ASSERT_TRUE(r.malformed.empty());
+  }
+  ASSERT_EQ(got.size(), 8u) << "see " << (tmp.path / "simd.log");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].particles, 150u);
+  EXPECT_EQ(infos[0].frames, 8u);
+  // The daemon closes its run file right after the last frame (HDF5 locks it until then).
+  RunFileContents file;
+  for (int k = 0;; ++k) {
+    try {
+      file = read_run_file(tmp.path / "run.h5");
+      break;
+    } catch (const h5::Error&) {
+      if (k == 300) throw;
+      std::this_thread::sleep_for(100ms);
+    }
+  }
+  EXPECT_EQ(file.info, infos[0]);
+  ASSERT_EQ(file.frames.size(), 8u);
+  for (std::size_t k = 0; k < 8; ++k) {
+    const RunFrame &a = file.frames[k], &b = got[k];
+    EXPECT_EQ(a.header, b.header);
+    ASSERT_EQ(a.frame.particles.size(), b.frame.particles.size());
+    for (std::size_t p = 0; p < a.frame.particles.size(); ++p)
+      ASSERT_TRUE(same_bits(a.frame.particles[p].x, b.frame.particles[p].x) && same_bits(a.frame.particles[p].y, b.frame.particles[p].y) &&
+                  same_bits(a.frame.particles[p].r, b.frame.particles[p].r));
+    ASSERT_EQ(a.frame.contacts.size(), b.frame.contacts.size());
+    for (std::size_t c = 0; c < a.frame.contacts.size(); ++c)
+      ASSERT_TRUE(a.frame.contacts[c].i == b.frame.contacts[c].i && a.frame.contacts[c].j == b.frame.contacts[c].j &&
+                  same_bits(a.frame.contacts[c].fn, b.frame.contacts[c].fn) && same_bits(a.frame.contacts[c].ft, b.frame.contacts[c].ft));
+    EXPECT_EQ(a.wall_contacts, b.wall_contacts);
+    EXPECT_NO_THROW(validate(b.frame)) << "frame " << k;
+  }
+  EXPECT_GT(got.back().header.rho, 0.89);  // the compression reached its end
+  simd.stop();
+}
+
+TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {
+  TempDir tmp;
+  Process server(FNET_SERVER, {"--data-dir", (tmp.path / "data").string(), "--port", "0", "--domain", "42"},
+                 tmp.path / "server.log", dds_environment());
+  const auto line = server.read_line(30s);
+  ASSERT_TRUE(line);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) ")));
+  const auto port = static_cast<unsigned short>(std::stoi(m[1]));
+  Process simd(FNET_SIMD, small_run("sim", 42, tmp.path / "run.h5"), tmp.path / "simd.log", dds_environment());
+  client::RpcClient rpc("127.0.0.1", port);
+  client::json run;
+  for (int k = 0; k < 3000; ++k) {
+    const client::json listed = rpc.call("runs.list");
+    if (!listed["runs"].empty() && listed["runs"][0]["frames"] == 8) {
+      run = listed["runs"][0];
+      break;
+    }
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_EQ(run["frames"], 8) << "see " << (tmp.path / "server.log");
+  EXPECT_EQ(run["planned_frames"], 8);
+  simd.stop();
+  Process offline(FNET_ANALYZE, {"store", "--run-file", (tmp.path / "run.h5").string(), "--data-dir", (tmp.path / "offline").string()},
+                  tmp.path / "offline.log");
+  ASSERT_EQ(offline.wait(300s), 0);
+  const StoredRun expected = read_store(store_path(tmp.path / "offline", "sim"));
+  ASSERT_EQ(expected.frames.size(), 8u);
+  const client::json series = rpc.call("series.get", {{"run", "sim"}, {"metric", "wasserstein1"}, {"dim", 1}, {"force", "tangential"}});
+  for (std::size_t k = 1; k < 8; ++k)
+    EXPECT_EQ(series["value"][k].get<double>(), expected.frames[k].distances(Metric::wasserstein1, 1, ForceKind::tangential));
+  EXPECT_EQ(server.stop(), 0);
+}
+
+}  // namespace
+}  // namespace fnet::e2e
