@@ -280,6 +280,10 @@ int cmd_watch(const std::string& host, unsigned short port, const std::vector<st
       if (last_frame) sub["since"] = *last_frame;
       rpc.call("series.subscribe", sub);
       attempts = 0;
+      if (!last_frame) {  // nothing to show until the first frame is analyzed (the run may still be relaxing)
+        if (plain) std::cout << "watching run " << run << ": waiting for the first analyzed frame" << std::endl;
+        else std::cout << "\x1b[H\x1b[2Jfnet watch  run " << run << "   (Ctrl-C to leave)\n\nwaiting for the first analyzed frame..." << std::flush;
+      }
       double rho_start = -1;
       while (!interrupted) {
         const std::optional<json> n = rpc.next_notification(std::chrono::milliseconds(200));
