@@ -14,6 +14,7 @@
 #include "common/analysis_store.hpp"
 #include "common/frame_analysis.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/unit/temp_dir.hpp"
 
 namespace fnet::e2e {
 namespace {
@@ -22,15 +23,6 @@ namespace fs = std::filesystem;
 using client::json;
 using client::RpcClient;
 using namespace std::chrono_literals;
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "fnet-e2e-XXXXXX").string();
-    path = mkdtemp(tmpl.data());
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 const fs::path kLammps = fs::path(FNET_TEST_DATA) / "lammps-mu0.5-seed777";
 
@@ -139,19 +131,19 @@ void expect_series_match(unsigned short port, const std::string& run, const Stor
 }
 
 TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
-  TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path, "csv", {0, 1, 2, 3, 4, 5});
-  Server server = start_server(tmp.path / "data", 31, tmp.path / "server.log");
-  auto pub = publish(run_dir, "live", 31, tmp.path / "publish.log");
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4, 5});
+  Server server = start_server(tmp.path() / "data", 31, tmp.path() / "server.log");
+  auto pub = publish(run_dir, "live", 31, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   wait_for_frames(server.port, "live", 6);
-  const StoredRun offline = offline_store(run_dir, "live", tmp.path / "offline", tmp.path / "store.log");
+  const StoredRun offline = offline_store(run_dir, "live", tmp.path() / "offline", tmp.path() / "store.log");
   ASSERT_EQ(offline.frames.size(), 6u);
   expect_series_match(server.port, "live", offline);
 
   // fnetctl --format json: one object with equal-length arrays frame, rho, value.
   Process ctl(FNETCTL, {"--port", std::to_string(server.port), "query", "--metric", "wasserstein2", "--run", "live", "--format", "json"},
-              tmp.path / "fnetctl.log");
+              tmp.path() / "fnetctl.log");
   ASSERT_EQ(ctl.wait(30s), 0);
   const json q = json::parse(ctl.read_rest());
   ASSERT_EQ(q["frame"].size(), 6u);
@@ -163,14 +155,14 @@ TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
 }
 
 TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
-  TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path, "csv", {0, 1, 2, 3});
-  auto pub = publish(run_dir, "early", 32, tmp.path / "publish.log", 0, 60, 0);
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3});
+  auto pub = publish(run_dir, "early", 32, tmp.path() / "publish.log", 0, 60, 0);
   // The publisher has written everything (no reader exists yet) before the server starts.
-  const auto reported = [&] { return fs::exists(tmp.path / "publish.log") && fs::file_size(tmp.path / "publish.log") > 0; };
+  const auto reported = [&] { return fs::exists(tmp.path() / "publish.log") && fs::file_size(tmp.path() / "publish.log") > 0; };
   for (int k = 0; k < 300 && !reported(); ++k) std::this_thread::sleep_for(50ms);
   ASSERT_TRUE(reported()) << "publisher never reported";
-  Server server = start_server(tmp.path / "data", 32, tmp.path / "server.log");
+  Server server = start_server(tmp.path() / "data", 32, tmp.path() / "server.log");
   const json run = wait_for_frames(server.port, "early", 4);
   EXPECT_EQ(run["frames"], 4);
   EXPECT_EQ(run["announced"], true);
@@ -178,11 +170,11 @@ TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
 }
 
 TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
-  TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path, "csv", {0, 1, 2, 3, 4, 5});
-  auto pub = publish(run_dir, "crash", 33, tmp.path / "publish.log", 3, 120);
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4, 5});
+  auto pub = publish(run_dir, "crash", 33, tmp.path() / "publish.log", 3, 120);
   {
-    Server first = start_server(tmp.path / "data", 33, tmp.path / "server1.log");
+    Server first = start_server(tmp.path() / "data", 33, tmp.path() / "server1.log");
     RpcClient rpc("127.0.0.1", first.port);
     for (int k = 0; k < 600; ++k) {  // kill it mid-run, once some frames are stored
       const json runs = rpc.call("runs.list")["runs"];
@@ -192,14 +184,14 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
     first.process->signal(SIGKILL);
     first.process->wait(10s);
   }
-  Server second = start_server(tmp.path / "data", 33, tmp.path / "server2.log");
+  Server second = start_server(tmp.path() / "data", 33, tmp.path() / "server2.log");
   const json run = wait_for_frames(second.port, "crash", 6);
   EXPECT_EQ(run["frames"], 6);
   EXPECT_EQ(run["rejected"], 0);
-  const StoredRun offline = offline_store(run_dir, "crash", tmp.path / "offline", tmp.path / "store.log");
+  const StoredRun offline = offline_store(run_dir, "crash", tmp.path() / "offline", tmp.path() / "store.log");
   expect_series_match(second.port, "crash", offline);
   // Nothing counted twice: the store holds each frame once.
-  const StoredRun stored = read_store(store_path(tmp.path / "data", "crash"));
+  const StoredRun stored = read_store(store_path(tmp.path() / "data", "crash"));
   std::set<std::uint32_t> indices;
   for (const AnalyzedFrame& f : stored.frames) EXPECT_TRUE(indices.insert(f.header.index).second) << f.header.index;
   EXPECT_EQ(indices.size(), 6u);
@@ -207,13 +199,13 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
 }
 
 TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
-  TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path, "csv", {0, 1, 2, 3, 4}, [](int k, std::vector<std::string>& rows) {
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4}, [](int k, std::vector<std::string>& rows) {
     if (k == 1) rows[5] = "10,11,nan,0.5";      // a NaN force
     if (k == 3) rows[7] = "10,999999,1.0,0.5";  // an index out of range
   });
-  Server server = start_server(tmp.path / "data", 34, tmp.path / "server.log");
-  auto pub = publish(run_dir, "bad", 34, tmp.path / "publish.log");
+  Server server = start_server(tmp.path() / "data", 34, tmp.path() / "server.log");
+  auto pub = publish(run_dir, "bad", 34, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   const json run = wait_for_frames(server.port, "bad", 5);
   EXPECT_EQ(run["frames"], 3);
@@ -232,18 +224,18 @@ TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
 }
 
 TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
-  TempDir tmp;
-  const fs::path a = make_run(tmp.path, "a", {0, 1, 2, 3});
-  const fs::path b = make_run(tmp.path, "b", {5, 4, 3, 2});
-  Server server = start_server(tmp.path / "data", 35, tmp.path / "server.log");
-  auto pa = publish(a, "run-a", 35, tmp.path / "pa.log", 20);
-  auto pb = publish(b, "run-b", 35, tmp.path / "pb.log", 20);
+  testing::TempDir tmp;
+  const fs::path a = make_run(tmp.path(), "a", {0, 1, 2, 3});
+  const fs::path b = make_run(tmp.path(), "b", {5, 4, 3, 2});
+  Server server = start_server(tmp.path() / "data", 35, tmp.path() / "server.log");
+  auto pa = publish(a, "run-a", 35, tmp.path() / "pa.log", 20);
+  auto pb = publish(b, "run-b", 35, tmp.path() / "pb.log", 20);
   EXPECT_EQ(pa->wait(120s), 0);
   EXPECT_EQ(pb->wait(120s), 0);
   wait_for_frames(server.port, "run-a", 4);
   wait_for_frames(server.port, "run-b", 4);
-  expect_series_match(server.port, "run-a", offline_store(a, "run-a", tmp.path / "offline", tmp.path / "sa.log"));
-  expect_series_match(server.port, "run-b", offline_store(b, "run-b", tmp.path / "offline", tmp.path / "sb.log"));
+  expect_series_match(server.port, "run-a", offline_store(a, "run-a", tmp.path() / "offline", tmp.path() / "sa.log"));
+  expect_series_match(server.port, "run-b", offline_store(b, "run-b", tmp.path() / "offline", tmp.path() / "sb.log"));
   // And across runs: frame 0 of b is frame 5 of the LAMMPS run, frame 2 of a is frame 2: distinct.
   RpcClient rpc("127.0.0.1", server.port);
   const json d = rpc.call("distance.get", {{"run", "run-a"}, {"frame", 3}, {"other_run", "run-b"}, {"other_frame", 2}, {"metric", "bottleneck"}});
@@ -253,8 +245,8 @@ TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
 }
 
 TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
-  TempDir tmp;
-  Server server = start_server(tmp.path / "data", 36, tmp.path / "server.log",
+  testing::TempDir tmp;
+  Server server = start_server(tmp.path() / "data", 36, tmp.path() / "server.log",
                                {"--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
   const auto raw = [&](const std::string& text) {
     boost::asio::io_context io;
@@ -325,12 +317,12 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
 }
 
 TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
-  TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path, "csv", {0, 1, 2, 3, 4});
-  Server server = start_server(tmp.path / "data", 37, tmp.path / "server.log");
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4});
+  Server server = start_server(tmp.path() / "data", 37, tmp.path() / "server.log");
   RpcClient watcher("127.0.0.1", server.port);
   std::vector<std::uint32_t> seen;
-  auto pub = publish(run_dir, "live", 37, tmp.path / "publish.log", 4);
+  auto pub = publish(run_dir, "live", 37, tmp.path() / "publish.log", 4);
   // The run exists once its first frame or announcement arrives.
   for (int k = 0; k < 600; ++k) {
     try {

@@ -12,21 +12,13 @@
 #include "common/frame_transport.hpp"
 #include "common/run_file.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/unit/temp_dir.hpp"
 
 namespace fnet::e2e {
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "fnet-simd-e2e-XXXXXX").string();
-    path = mkdtemp(tmpl.data());
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -37,10 +29,10 @@ std::vector<std::string> small_run(const std::string& run_id, int domain, const 
 }
 
 TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
-  TempDir tmp;
+  testing::TempDir tmp;
   // The daemon starts first (no DDS in this process before the fork); the subscriber joins late
   // and is served from the durability history while the daemon lingers.
-  Process simd(FNET_SIMD, small_run("bits", 41, tmp.path / "run.h5"), tmp.path / "simd.log", dds_environment());
+  Process simd(FNET_SIMD, small_run("bits", 41, tmp.path() / "run.h5"), tmp.path() / "simd.log", dds_environment());
   setenv("CYCLONEDDS_URI", dds_environment().at("CYCLONEDDS_URI").c_str(), 1);
   dds::FrameSubscriber subscriber(41);
   std::vector<RunFrame> got;
@@ -52,7 +44,7 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
     for (auto& i : r.infos) infos.push_back(std::move(i));
     ASSERT_TRUE(r.malformed.empty());
   }
-  ASSERT_EQ(got.size(), 8u) << "see " << (tmp.path / "simd.log");
+  ASSERT_EQ(got.size(), 8u) << "see " << (tmp.path() / "simd.log");
   ASSERT_EQ(infos.size(), 1u);
   EXPECT_EQ(infos[0].particles, 150u);
   EXPECT_EQ(infos[0].frames, 8u);
@@ -60,7 +52,7 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
   RunFileContents file;
   for (int k = 0;; ++k) {
     try {
-      file = read_run_file(tmp.path / "run.h5");
+      file = read_run_file(tmp.path() / "run.h5");
       break;
     } catch (const h5::Error&) {
       if (k == 300) throw;
@@ -88,15 +80,15 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
 }
 
 TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {
-  TempDir tmp;
-  Process server(FNET_SERVER, {"--data-dir", (tmp.path / "data").string(), "--port", "0", "--domain", "42"},
-                 tmp.path / "server.log", dds_environment());
+  testing::TempDir tmp;
+  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "42"},
+                 tmp.path() / "server.log", dds_environment());
   const auto line = server.read_line(30s);
   ASSERT_TRUE(line);
   std::smatch m;
   ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) ")));
   const auto port = static_cast<unsigned short>(std::stoi(m[1]));
-  Process simd(FNET_SIMD, small_run("sim", 42, tmp.path / "run.h5"), tmp.path / "simd.log", dds_environment());
+  Process simd(FNET_SIMD, small_run("sim", 42, tmp.path() / "run.h5"), tmp.path() / "simd.log", dds_environment());
   client::RpcClient rpc("127.0.0.1", port);
   client::json run;
   for (int k = 0; k < 3000; ++k) {
@@ -107,13 +99,13 @@ TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {
     }
     std::this_thread::sleep_for(100ms);
   }
-  ASSERT_EQ(run["frames"], 8) << "see " << (tmp.path / "server.log");
+  ASSERT_EQ(run["frames"], 8) << "see " << (tmp.path() / "server.log");
   EXPECT_EQ(run["planned_frames"], 8);
   simd.stop();
-  Process offline(FNET_ANALYZE, {"store", "--run-file", (tmp.path / "run.h5").string(), "--data-dir", (tmp.path / "offline").string()},
-                  tmp.path / "offline.log");
+  Process offline(FNET_ANALYZE, {"store", "--run-file", (tmp.path() / "run.h5").string(), "--data-dir", (tmp.path() / "offline").string()},
+                  tmp.path() / "offline.log");
   ASSERT_EQ(offline.wait(300s), 0);
-  const StoredRun expected = read_store(store_path(tmp.path / "offline", "sim"));
+  const StoredRun expected = read_store(store_path(tmp.path() / "offline", "sim"));
   ASSERT_EQ(expected.frames.size(), 8u);
   const client::json series = rpc.call("series.get", {{"run", "sim"}, {"metric", "wasserstein1"}, {"dim", 1}, {"force", "tangential"}});
   for (std::size_t k = 1; k < 8; ++k)

@@ -10,20 +10,12 @@
 #include <random>
 
 #include "common/run_file.hpp"
+#include "tests/unit/temp_dir.hpp"
 
 namespace fnet {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "fnet-store-XXXXXX").string();
-    path = mkdtemp(tmpl.data());
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 RunInfo info(const std::string& run) {
   return {run, 300, 0.4, 0.5, 4000, 0.5, 0.8, 1e-3, 7.19377e-4, 0.9, 12, 7, R"({"particles": 300, "mu": 0.5})"};
@@ -63,8 +55,8 @@ void expect_same(const RunFrame& a, const RunFrame& b) {
 }
 
 TEST(RunFile, RoundTripIncludingAnEmptyFrame) {
-  TempDir dir;
-  const fs::path file = dir.path / "run.h5";
+  testing::TempDir dir;
+  const fs::path file = dir.path() / "run.h5";
   {
     RunFileWriter w(file, info("r1"));
     for (std::uint32_t k = 0; k < 5; ++k) w.append(frame("r1", k, k == 2 ? 0 : 50 * k + 10));
@@ -76,13 +68,13 @@ TEST(RunFile, RoundTripIncludingAnEmptyFrame) {
 }
 
 TEST(RunFile, ReadableWithH5py) {
-  TempDir dir;
-  const fs::path file = dir.path / "run.h5";
+  testing::TempDir dir;
+  const fs::path file = dir.path() / "run.h5";
   {
     RunFileWriter w(file, info("py"));
     for (std::uint32_t k = 0; k < 3; ++k) w.append(frame("py", k, 40));
   }
-  const fs::path script = dir.path / "read.py";
+  const fs::path script = dir.path() / "read.py";
   std::ofstream(script) << "import h5py, sys, json\n"
                            "f = h5py.File(sys.argv[1], 'r')\n"
                            "assert f.attrs['schema'] == 'fnet-run-1', f.attrs['schema']\n"
@@ -100,8 +92,8 @@ TEST(RunFile, ReadableWithH5py) {
 }
 
 TEST(RunFile, ReopenDropsFramesFromTheResumePointOn) {
-  TempDir dir;
-  const fs::path file = dir.path / "run.h5";
+  testing::TempDir dir;
+  const fs::path file = dir.path() / "run.h5";
   {
     RunFileWriter w(file, info("r2"));
     for (std::uint32_t k = 0; k < 6; ++k) w.append(frame("r2", k, 20));
@@ -117,8 +109,8 @@ TEST(RunFile, ReopenDropsFramesFromTheResumePointOn) {
 }
 
 TEST(RunFile, KilledWriterLeavesEveryFlushedFrameReadable) {
-  TempDir dir;
-  const fs::path file = dir.path / "run.h5";
+  testing::TempDir dir;
+  const fs::path file = dir.path() / "run.h5";
   int done[2];
   ASSERT_EQ(pipe(done), 0);
   const pid_t pid = fork();
@@ -144,8 +136,8 @@ TEST(RunFile, KilledWriterLeavesEveryFlushedFrameReadable) {
 }
 
 TEST(RunFile, ErrorsNameTheFile) {
-  TempDir dir;
-  const fs::path bogus = dir.path / "not-hdf5.h5";
+  testing::TempDir dir;
+  const fs::path bogus = dir.path() / "not-hdf5.h5";
   std::ofstream(bogus) << "hello";
   try {
     read_run_file(bogus);
@@ -153,7 +145,7 @@ TEST(RunFile, ErrorsNameTheFile) {
   } catch (const h5::Error& e) {
     EXPECT_NE(std::string(e.what()).find("not-hdf5.h5"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(read_run_file(dir.path / "missing.h5"), h5::Error);
+  EXPECT_THROW(read_run_file(dir.path() / "missing.h5"), h5::Error);
 }
 
 }  // namespace
