@@ -223,6 +223,32 @@ TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
   EXPECT_EQ(series["previous"], json({nullptr, 0, 2}));  // distances skip the rejected frames
 }
 
+TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3});
+  // Published as 0, 2, 1, 3, 2: frame 2 arrives before 1, and twice.
+  {
+    std::ifstream in(run_dir / "index.csv");
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);) rows.push_back(line);
+    std::ofstream out(run_dir / "index.csv");
+    out << rows[0] << "\n" << rows[1] << "\n" << rows[3] << "\n" << rows[2] << "\n" << rows[4] << "\n" << rows[3] << "\n";
+  }
+  Server server = start_server(tmp.path() / "data", 38, tmp.path() / "server.log");
+  auto pub = publish(run_dir, "shuffled", 38, tmp.path() / "publish.log");
+  EXPECT_EQ(pub->wait(120s), 0);
+  const json run = wait_for_frames(server.port, "shuffled", 4);
+  EXPECT_EQ(run["frames"], 4);
+  EXPECT_EQ(run["duplicates"], 1);
+  RpcClient rpc("127.0.0.1", server.port);
+  const json series = rpc.call("series.get", {{"run", "shuffled"}, {"metric", "wasserstein1"}, {"dim", 1}});
+  EXPECT_EQ(series["frame"], json({0, 1, 2, 3}));
+  EXPECT_EQ(series["previous"], json({nullptr, 0, 1, 2}));  // distances between consecutive frames, whatever the arrival order
+  const StoredRun offline = offline_store(make_run(tmp.path(), "ordered", {0, 1, 2, 3}), "shuffled", tmp.path() / "offline",
+                                          tmp.path() / "store.log");
+  expect_series_match(server.port, "shuffled", offline);
+}
+
 TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
   testing::TempDir tmp;
   const fs::path a = make_run(tmp.path(), "a", {0, 1, 2, 3});
