@@ -14,10 +14,10 @@ namespace fnet::sim {
 
 struct Simulation;
 
-// Each returns the largest squared displacement of a grain since the last list build.
-double gear_predict(Simulation& s);
+// Each returns whether a grain has moved farther than √limit2 since the last list build.
+bool gear_predict(Simulation& s, double limit2);
 void gear_correct(Simulation& s);
-double verlet_first_half(Simulation& s);
+bool verlet_first_half(Simulation& s, double limit2);
 void verlet_second_half(Simulation& s);
 
 }  // namespace fnet::sim

@@ -95,12 +95,12 @@ Simulation make_custom(const Params& p, std::span<const GrainInit> grains) {
 }
 
 void step(Simulation& s) {
-  const double max_disp2 = s.params.integrator == Integrator::gear ? gear_predict(s) : verlet_first_half(s);
+  const double half_skin = 0.5 * s.list.skin;
+  const double limit2 = half_skin * half_skin;
+  const bool moved = s.params.integrator == Integrator::gear ? gear_predict(s, limit2) : verlet_first_half(s, limit2);
   if (s.walls_moving) ++s.compress_step;
   place_walls(s);
-  const double half_skin = 0.5 * s.list.skin;
-  if (max_disp2 > half_skin * half_skin ||
-      std::abs(wall_offset(s) - s.list.wall_offset_build) > half_skin)
+  if (moved || std::abs(wall_offset(s) - s.list.wall_offset_build) > half_skin)
     rebuild(s.list, s.x[0], s.y[0], s.radius, s.inv_mass, s.n, wall_offset(s));
   compute_forces(s);
   if (s.params.integrator == Integrator::gear)

@@ -3,13 +3,14 @@
 //     collisions (0.8–1.2 pair, phase-averaged and worst phase), energy drift of an elastic
 //     frictionless gas over 200 τ_c, and cost per step of a 2000-grain packing near jamming.
 //  2. Cost against N (1e3 .. 1e5 grains) on the relaxing lattice at ρ = 0.63.
-// Usage: fnet_sim_bench [max_N]   (default 100000)
+// Usage: fnet_sim_bench [max_N] [--cost-only]   (max_N default 100000; --cost-only skips part 1)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "server/sim/protocol.hpp"
@@ -108,20 +109,23 @@ double microseconds_per_step(Simulation s, int steps) {
 
 int main(int argc, char** argv) {
   const std::size_t max_n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
+  const bool cost_only = argc > 2 && std::string(argv[2]) == "--cost-only";
 
-  std::printf("Gear-4 vs velocity Verlet (restitution: 0.8-1.2 pair over 32 contact phases; energy: elastic\n"
-              "frictionless gas of 400 grains over 200 tau_c; cost: 2000 grains at rho 0.80, per step)\n");
-  std::printf("%-8s %-7s %14s %14s %14s %12s %16s\n", "method", "dt", "|mean e err|", "worst e err", "energy drift",
-              "us/step", "us per tau_c");
-  for (double divisor : {25.0, 50.0, 100.0}) {
-    for (Integrator integrator : {Integrator::gear, Integrator::verlet}) {
-      const RestitutionError e = restitution_error(integrator, divisor);
-      const double drift = energy_drift(integrator, divisor);
-      const double us = microseconds_per_step(dense_packing(integrator, divisor), 5000);
-      char dt[32];
-      std::snprintf(dt, sizeof dt, "tau/%g", divisor);
-      std::printf("%-8s %-7s %14.3e %14.3e %14.3e %12.1f %16.0f\n", to_string(integrator), dt, e.mean, e.worst, drift, us,
-                  us * divisor);
+  if (!cost_only) {
+    std::printf("Gear-4 vs velocity Verlet (restitution: 0.8-1.2 pair over 32 contact phases; energy: elastic\n"
+                "frictionless gas of 400 grains over 200 tau_c; cost: 2000 grains at rho 0.80, per step)\n");
+    std::printf("%-8s %-7s %14s %14s %14s %12s %16s\n", "method", "dt", "|mean e err|", "worst e err", "energy drift",
+                "us/step", "us per tau_c");
+    for (double divisor : {25.0, 50.0, 100.0}) {
+      for (Integrator integrator : {Integrator::gear, Integrator::verlet}) {
+        const RestitutionError e = restitution_error(integrator, divisor);
+        const double drift = energy_drift(integrator, divisor);
+        const double us = microseconds_per_step(dense_packing(integrator, divisor), 5000);
+        char dt[32];
+        std::snprintf(dt, sizeof dt, "tau/%g", divisor);
+        std::printf("%-8s %-7s %14.3e %14.3e %14.3e %12.1f %16.0f\n", to_string(integrator), dt, e.mean, e.worst, drift, us,
+                    us * divisor);
+      }
     }
   }
 
