@@ -11,6 +11,9 @@ namespace fnet {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::int64_t kGenerator[2] = {-1, -2};  // heap ids of the two hubs' lazy arc streams
+// Heap ids of tree boxes start here: at equal keys nodes pop first, so a sink found at the current
+// distance ends the search before any box that cannot beat it is opened.
+constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
 }  // namespace
 
 DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::vector<Arc> arcs)
@@ -21,6 +24,194 @@ DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> d
       pred_cost_(n_ + m_ + 2, 0), pred_(n_ + m_ + 2, 0), seen_(n_ + m_ + 2, 0), final_(n_ + m_ + 2, 0) {
   rebuild_rows(std::move(arcs));
   for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
+}
+
+DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
+                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
+    : DiagonalFlow(std::move(diagonal_a), std::move(diagonal_b), {}) {
+  implicit_ = true;
+  q_ = q;
+  pa_.assign(a.begin(), a.end());
+  tree_b_ = std::make_unique<LinfKdTree>(b);
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  box_parent_.assign(nodes.size(), -1);
+  leaf_of_b_.assign(b.size(), -1);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    if (nodes[k].left >= 0) {
+      box_parent_[nodes[k].left] = box_parent_[nodes[k].right] = static_cast<std::int32_t>(k);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) leaf_of_b_[order[s]] = static_cast<std::int32_t>(k);
+    }
+  }
+  box_max_.assign(nodes.size(), {});
+  box_run_.assign(nodes.size(), 0);
+  box_db_.assign(nodes.size(), 0.0);
+  for (std::size_t k = nodes.size(); k-- > 0;) {
+    if (nodes[k].left >= 0) {
+      box_db_[k] = std::max(box_db_[nodes[k].left], box_db_[nodes[k].right]);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) box_db_[k] = std::max(box_db_[k], db_[order[s]]);
+    }
+  }
+  box_done_.assign(nodes.size(), 0);
+  for (std::size_t k = nodes.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
+  greedy_start();
+}
+
+void DiagonalFlow::greedy_start() {
+  // Row reduction: with pi(b) = pi(HA) = pi(HB) = 0, pi(a_i) = -(its cheapest way out) keeps every
+  // reduced cost >= 0, and a_i's cheapest arc is tight: take it when its head is still free (the
+  // diagonal always is). Consecutive frames' diagrams are close, so most rows are settled here.
+  std::vector<std::uint32_t> near;
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    tree_b_->nearest(pa_[i], 4, near, i);
+    double best = da_[i];
+    std::int64_t to = kDiagonal;
+    for (const std::uint32_t j : near) {
+      const double c = cost(i, j);
+      if (c < best || (c == best && to >= 0 && mate_b_[to] != kNone && mate_b_[j] == kNone)) best = c, to = j;
+    }
+    pi_[i] = -best;
+    if (to == kDiagonal) {
+      mate_a_[i] = kDiagonal, ++a_to_diagonal_;
+    } else if (mate_b_[to] == kNone) {
+      mate_a_[i] = to, mate_b_[to] = i, mate_cost_a_[i] = best;
+    }
+    refresh(i);
+  }
+  // Column step for the b_j still free: pi(b_j) = min(db_j, min_i c_ij + pi(a_i)) keeps every arc
+  // into b_j feasible; when the diagonal attains it, b_j is fed from the diagonal (tight). Without
+  // this the diagonal's supply is routed last, each unit by a search over most of the graph.
+  const LinfKdTree tree_a(pa_);
+  const auto nodes = tree_a.nodes();
+  const auto order = tree_a.order();
+  std::vector<double> min_pi(nodes.size(), kInf);
+  for (std::size_t k = nodes.size(); k-- > 0;) {
+    if (nodes[k].left >= 0) {
+      min_pi[k] = std::min(min_pi[nodes[k].left], min_pi[nodes[k].right]);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) min_pi[k] = std::min(min_pi[k], pi_[order[s]]);
+    }
+  }
+  std::vector<std::int32_t> stack;
+  const auto points_b = tree_b_->points();
+  for (std::uint32_t j = 0; j < m_; ++j) {
+    if (mate_b_[j] != kNone || nodes.empty()) continue;
+    double best = db_[j];
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const auto& node = nodes[stack.back()];
+      stack.pop_back();
+      const double distance = tree_a.box_distance(node, points_b[j]);
+      const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+      if (!(c + min_pi[&node - nodes.data()] < best)) continue;
+      if (node.left >= 0) {
+        stack.push_back(node.left), stack.push_back(node.right);
+        continue;
+      }
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t i = order[s];
+        best = std::min(best, cost(i, j) + pi_[i]);
+      }
+    }
+    pi_[n_ + j] = best;
+    if (best == db_[j]) mate_b_[j] = kDiagonal, ++b_from_diagonal_;
+  }
+  for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
+  for (std::size_t k = box_max_.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
+}
+
+bool DiagonalFlow::recompute_box(std::int32_t k) {
+  const auto& node = tree_b_->nodes()[k];
+  BoxMax value;
+  if (node.left < 0) {
+    const auto order = tree_b_->order();
+    const auto points = tree_b_->points();
+    for (std::uint32_t s = node.begin; s < node.end; ++s) {
+      const std::uint32_t j = order[s];
+      const double p = pi_[n_ + j];
+      const PlanePoint b = points[j];
+      value.pi = std::max(value.pi, p);
+      value.minus_x = std::max(value.minus_x, p - b.x), value.plus_x = std::max(value.plus_x, p + b.x);
+      value.minus_y = std::max(value.minus_y, p - b.y), value.plus_y = std::max(value.plus_y, p + b.y);
+    }
+  } else {
+    const BoxMax& l = box_max_[node.left];
+    const BoxMax& r = box_max_[node.right];
+    value = {std::max(l.pi, r.pi), std::max(l.minus_x, r.minus_x), std::max(l.plus_x, r.plus_x),
+             std::max(l.minus_y, r.minus_y), std::max(l.plus_y, r.plus_y)};
+  }
+  BoxMax& old = box_max_[k];
+  const bool same = old.pi == value.pi && old.minus_x == value.minus_x && old.plus_x == value.plus_x &&
+                    old.minus_y == value.minus_y && old.plus_y == value.plus_y;
+  old = value;
+  return !same;
+}
+
+double DiagonalFlow::cost(std::uint32_t i, std::uint32_t j) const {
+  const double d = linf_distance(pa_[i], tree_b_->points()[j]);
+  return q_ == 1 ? d : q_ == 2 ? d * d : std::pow(d, q_);
+}
+
+double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
+  const auto& box = tree_b_->nodes()[node];
+  if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
+  const double distance = tree_b_->box_distance(box, pa_[i]);
+  const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+  if (!(c < da_[i] + box_db_[node])) return kInf;  // no arc into the box beats the diagonal
+  const BoxMax& m = box_max_[node];
+  double bound = c + pi_[i] - m.pi;
+  if (q_ == 1) {
+    // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
+    const PlanePoint a = pa_[i];
+    bound = std::max({bound, pi_[i] - a.x - m.minus_x, pi_[i] + a.x - m.plus_x, pi_[i] - a.y - m.minus_y,
+                      pi_[i] + a.y - m.plus_y});
+  }
+  return dist_[i] + std::max(0.0, bound);
+}
+
+void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
+  // Boxes whose key is not above the current distance would pop next anyway: open them at once.
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  const double d = dist_[i];
+  box_stack_.clear();
+  box_stack_.push_back(node);
+  while (!box_stack_.empty()) {
+    const std::int32_t k = box_stack_.back();
+    box_stack_.pop_back();
+    const auto& box = nodes[k];
+    ++boxes_opened_;
+    if (box.left >= 0) {
+      for (const std::int32_t child : {box.left, box.right}) {
+        const double key = box_key(i, child);
+        if (key == kInf) continue;
+        if (key <= current_) {
+          box_stack_.push_back(child);
+        } else {
+          boxes_.push_back({i, child});
+          heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
+          std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+        }
+      }
+      continue;
+    }
+    for (std::uint32_t s = box.begin; s < box.end; ++s) {
+      const std::uint32_t j = order[s];
+      if (mate_a_[i] == static_cast<std::int64_t>(j)) continue;
+      const double c = cost(i, j);
+      if (!(c < da_[i] + db_[j])) continue;  // never beats sending both to the diagonal
+      relax(n_ + j, d + std::max(0.0, c + pi_[i] - pi_[n_ + j]), i, c);
+    }
+  }
+}
+
+void DiagonalFlow::update_box_maxima(std::uint32_t j) {
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  for (std::int32_t k = leaf_of_b_[j]; k >= 0 && recompute_box(k); k = box_parent_[k]) {
+  }
 }
 
 void DiagonalFlow::rebuild_rows(std::vector<Arc> arcs) {
@@ -39,11 +230,13 @@ void DiagonalFlow::rebuild_rows(std::vector<Arc> arcs) {
 }
 
 bool DiagonalFlow::has_arc(std::uint32_t row, std::uint32_t col) const {
+  if (implicit_) return true;
   const auto first = row_col_.begin() + row_start_[row], last = row_col_.begin() + row_start_[row + 1];
   return std::binary_search(first, last, col);
 }
 
 void DiagonalFlow::add_arcs(std::vector<Arc> arcs) {
+  if (implicit_) return;  // the graph is already complete
   std::vector<Arc> all;
   all.reserve(row_col_.size() + arcs.size());
   for (std::uint32_t i = 0; i < n_; ++i)
@@ -126,6 +319,8 @@ void DiagonalFlow::relax(std::uint32_t v, double d, std::uint32_t from, double c
   pred_cost_[v] = cost;
   heap_.push_back({d, v});
   std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  // Nothing left in the heap is below current_: a sink reached at that distance is a shortest path.
+  if (d <= current_ && early_ < 0 && is_sink(v)) early_ = v;
 }
 
 void DiagonalFlow::push_generator(int which) {
@@ -146,6 +341,16 @@ void DiagonalFlow::scan(std::uint32_t u, double d) {
       const std::uint32_t j = row_col_[k];
       if (mate_a_[u] == static_cast<std::int64_t>(j)) continue;
       relax(n_ + j, d + std::max(0.0, row_cost_[k] + pi_[u] - pi_[n_ + j]), u, row_cost_[k]);
+    }
+    if (implicit_ && !tree_b_->nodes().empty()) {
+      const double key = box_key(u, 0);
+      if (key <= d) {
+        open_box(u, 0);
+      } else if (key < kInf) {
+        boxes_.push_back({u, 0});
+        heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
+        std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+      }
     }
     if (mate_a_[u] != kDiagonal) relax(hb_, d + std::max(0.0, da_[u] + pi_[u] - pi_[hb_]), u, da_[u]);
   } else if (u < n_ + m_) {
@@ -172,6 +377,9 @@ void DiagonalFlow::scan(std::uint32_t u, double d) {
 bool DiagonalFlow::dijkstra(std::uint32_t source) {
   ++run_;
   heap_.clear();
+  boxes_.clear();
+  early_ = -1;
+  current_ = -kInf;
   finalized_.clear();
   seen_[source] = run_;
   dist_[source] = 0;
@@ -181,6 +389,16 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
     std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
     const auto [d, id] = heap_.back();
     heap_.pop_back();
+    if (id >= kBoxBase) {
+      const BoxEntry box = boxes_[static_cast<std::size_t>(id - kBoxBase)];
+      current_ = d;
+      open_box(box.row, box.node);
+      if (early_ >= 0) {
+        target = early_;
+        break;
+      }
+      continue;
+    }
     if (id < 0) {
       const int which = id == kGenerator[0] ? 0 : 1;
       const auto& set = which == 0 ? hub_a_ : hub_b_;
@@ -199,14 +417,37 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
     if (final_[u] == run_ || d > dist_[u]) continue;
     final_[u] = run_;
     finalized_.push_back(u);
+    ++settled_;
+    if (implicit_ && u >= n_ && u < n_ + m_) {
+      for (std::int32_t k = leaf_of_b_[u - n_]; k >= 0; k = box_parent_[k]) {
+        if (box_run_[k] != run_) box_run_[k] = run_, box_done_[k] = 0;
+        ++box_done_[k];
+      }
+    }
     if (u != source && is_sink(u)) {
       target = u;
       break;
     }
+    current_ = d;
     scan(u, d);
+    if (early_ >= 0) {
+      target = early_;
+      break;
+    }
   }
   if (target < 0) return false;
+  // Early exit: every settled node is at distance <= total, the rest keep their potentials.
   const double total = dist_[target];
+  for (const std::uint32_t v : finalized_) pi_[v] -= total - dist_[v];
+  augment(source, static_cast<std::uint32_t>(target));
+  for (const std::uint32_t v : finalized_) refresh(v);
+  if (implicit_)
+    for (const std::uint32_t v : finalized_)
+      if (v >= n_ && v < n_ + m_) update_box_maxima(v - n_);
+  return true;
+}
+
+void DiagonalFlow::augment(std::uint32_t source, std::uint32_t target) {
 
   // Augment along the path, source to target.
   std::vector<std::uint32_t>& path = path_;
@@ -245,18 +486,24 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
       if (mate_b_[u - n_] == static_cast<std::int64_t>(v)) mate_b_[u - n_] = kNone;
     }
   }
-  for (const std::uint32_t v : finalized_) pi_[v] -= total - dist_[v];
-  for (const std::uint32_t v : finalized_) refresh(v);
   for (const std::uint32_t v : path) refresh(v);
   ++augmentations_;
-  return true;
 }
 
-void DiagonalFlow::solve() {
-  for (std::uint32_t i = 0; i < n_; ++i)
-    if (mate_a_[i] == kNone && !dijkstra(i)) throw std::logic_error("diagonal flow: no augmenting path");
-  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0)
+void DiagonalFlow::solve() { solve(std::numeric_limits<std::size_t>::max()); }
+
+bool DiagonalFlow::solve(std::size_t budget) {
+  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0) {
+    if (budget-- == 0) return false;
     if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
+  }
+  for (; next_row_ < n_; ++next_row_) {
+    if (mate_a_[next_row_] != kNone) continue;
+    if (budget-- == 0) return false;
+    if (!dijkstra(next_row_)) throw std::logic_error("diagonal flow: no augmenting path");
+  }
+  next_row_ = 0;  // rows released later by add_arcs are found again
+  return true;
 }
 
 }  // namespace fnet

@@ -5,13 +5,28 @@
 // Supplies: a_i 1, HA m; demands: b_j 1, HB n. Solved by successive shortest paths (Dijkstra with
 // potentials, early exit); the hubs' many arcs are scanned lazily from ordered sets, so a search
 // costs what it visits, not O(n + m). Internal to the Wasserstein distance.
+//
+// Implicit mode (the geometric constructor): every pair (a_i, b_j) with c_ij < da_i + db_j is an
+// arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
+// a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
+// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (for q = 1 also the
+// bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow potentials
+// sloping across the box). Boxes are opened best first, boxes whose points are all settled are
+// skipped, so the search is exact on the complete graph and no optimality certificate is needed.
+// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
+// column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
+// the diagonal's remaining units are routed before the remaining rows (measured: ~10% fewer nodes
+// settled on LAMMPS PD1 pairs).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <set>
 #include <span>
 #include <utility>
 #include <vector>
+
+#include "common/linf_kdtree.hpp"
 
 namespace fnet {
 
@@ -26,9 +41,16 @@ class DiagonalFlow {
 
   // Costs to the diagonal, already raised to the power q. Arcs: candidate pairs (a_i, b_j).
   DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::vector<Arc> arcs);
+  // Implicit complete graph: c_ij = ||a_i - b_j||_inf ^ q (a and b already scaled like the costs).
+  DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::span<const PlanePoint> a,
+               std::span<const PlanePoint> b, double q);
 
   // Completes the flow to an optimal one on the current arcs; keeps what it has (warm start).
   void solve();
+  // At most budget augmentations; true when the flow is complete (and optimal on the current arcs).
+  // In between, the potentials still give a lower bound (dual_without_pairs minus the pairs'
+  // negative reduced costs) and primal_cost() the cost of a matching (unrouted points to the diagonal).
+  bool solve(std::size_t budget);
 
   // Adds arcs (pairs already present are skipped); every row that gets one is released: its unit
   // goes back to its source and its potential is raised to keep all reduced costs >= 0.
@@ -44,6 +66,8 @@ class DiagonalFlow {
   double diagonal_a(std::uint32_t i) const { return da_[i]; }
   double diagonal_b(std::uint32_t j) const { return db_[j]; }
   std::size_t augmentations() const { return augmentations_; }
+  std::size_t settled() const { return settled_; }
+  std::size_t boxes_opened() const { return boxes_opened_; }
 
   // The dual objective of the current potentials over every arc except the pairs (a_i, b_j),
   // whose negative reduced costs the caller subtracts: sum of demand * potential, minus the
@@ -53,14 +77,21 @@ class DiagonalFlow {
 
  private:
   void rebuild_rows(std::vector<Arc> arcs);
+  // A shortest path from source to a sink, then augment; false when no sink is reachable.
   bool dijkstra(std::uint32_t source);
+  void augment(std::uint32_t source, std::uint32_t target);
   void relax(std::uint32_t v, double d, std::uint32_t from, double cost);
   void scan(std::uint32_t u, double d);
   void push_generator(int which);
   void refresh(std::uint32_t node);
   bool is_sink(std::uint32_t v) const;
+  double cost(std::uint32_t i, std::uint32_t j) const;
+  double box_key(std::uint32_t i, std::int32_t node) const;
+  void open_box(std::uint32_t i, std::int32_t node);
+  void update_box_maxima(std::uint32_t j);
 
   std::uint32_t n_, m_, ha_, hb_;
+  std::uint32_t next_row_ = 0;
   std::vector<double> da_, db_;
   std::vector<std::uint32_t> row_start_, row_col_;
   std::vector<double> row_cost_;
@@ -78,13 +109,38 @@ class DiagonalFlow {
   Cursor cursor_[2];
   double hub_dist_[2] = {0, 0};
 
+  // Implicit mode: the tree over B, per node the max of pi(b) (an upper bound: potentials only fall
+  // between refreshes), each node's parent and each point's leaf.
+  bool implicit_ = false;
+  double q_ = 1;
+  std::vector<PlanePoint> pa_;
+  std::unique_ptr<LinfKdTree> tree_b_;
+  struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b
+    double pi = -kHuge, minus_x = -kHuge, plus_x = -kHuge, minus_y = -kHuge, plus_y = -kHuge;
+  };
+  static constexpr double kHuge = 1e300;
+  std::vector<BoxMax> box_max_;
+  bool recompute_box(std::int32_t k);
+  void greedy_start();
+  std::vector<std::int32_t> box_stack_;
+  std::vector<double> box_db_;  // max db over the box
+  std::vector<std::uint32_t> box_run_, box_done_;  // points settled in the box during search box_run_
+  std::vector<std::int32_t> box_parent_, leaf_of_b_;
+  struct BoxEntry {
+    std::uint32_t row;
+    std::int32_t node;
+  };
+  std::vector<BoxEntry> boxes_;  // heap ids from kBoxBase on index this
+  double current_ = 0;           // key of the entry being processed
+  std::int64_t early_ = -1;      // a sink relaxed at distance current_
+
   // Dijkstra workspace.
   std::uint32_t run_ = 0;
   std::vector<double> dist_, pred_cost_;
   std::vector<std::uint32_t> pred_, seen_, final_;
   std::vector<std::uint32_t> finalized_, path_;
   std::vector<std::pair<double, std::int64_t>> heap_;
-  std::size_t augmentations_ = 0;
+  std::size_t augmentations_ = 0, settled_ = 0, boxes_opened_ = 0;
 };
 
 }  // namespace fnet

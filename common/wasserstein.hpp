@@ -17,20 +17,21 @@ struct WassersteinParams {
   // 0: exact. delta > 0: returns the cost of an actual matching (value == upper) once
   // upper - lower <= delta * lower, lower coming from a feasible dual.
   double delta = 0;
-  // Candidate arcs per point (k nearest in L-infinity, both ways); 0 picks a default. Only speed
-  // depends on it: the optimality certificate adds whatever arcs the optimum needs.
+  // Unused since the solver generates its arcs implicitly; kept for source compatibility.
   std::size_t neighbours = 0;
 };
 
 // Statistics of one solve, for benchmarks and tests.
 struct WassersteinStats {
   std::size_t arcs = 0, certificate_rounds = 0, arcs_added = 0, augmentations = 0;
+  std::size_t settled = 0, boxes_opened = 0;  // Dijkstra work (implicit solver)
 };
 
-// Min-cost flow on a sparse candidate graph (k nearest neighbours + the diagonal as two hubs),
-// solved by successive shortest paths; then every pair (a, b) is checked for a negative reduced
-// cost with a pruned 2-d tree search, the violating arcs are added and the flow re-solved warm,
-// until none is left. Coordinates are rescaled by a power of two first (exact), so the result is
+// Min-cost flow on the complete bipartite graph plus the diagonal as two hubs, solved by successive
+// shortest paths from a row-reduction start; the pair arcs are never stored: each search walks a
+// 2-d tree over B with per-box potential bounds (diagonal_flow.hpp). With delta > 0 it stops
+// between batches of augmentations once the current matching is certified by the potentials (every
+// pair's negative reduced cost charged, found by a pruned tree search). Coordinates are rescaled by a power of two first (exact), so the result is
 // scale-invariant to rounding and q-th powers neither overflow nor lose the distance scale.
 DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const WassersteinParams& params = {},
                                     WassersteinStats* stats = nullptr);

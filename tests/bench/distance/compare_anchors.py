@@ -1,17 +1,31 @@
-"""fnet vs Hera (gudhi.hera) vs POT's exact network simplex on the same diagram pairs, one run.
+"""fnet vs Hera (gudhi.hera) vs POT's exact network simplex vs GUDHI's exact bottleneck, one run.
 
 usage: compare_anchors.py FNET_ANALYZE A.json B.json [A2.json B2.json ...]
-Each pair is compared on pd0 and pd1 (floor convention: never-dying classes die at 0, so every tool
-sees the same finite diagrams). fnet's time is the "seconds" it reports (computation only, JSON
-parsing excluded); the anchors are timed around their call. Hera runs at its default relative
-error 0.01 (it has no exact Wasserstein); GUDHI's exact bottleneck is gudhi.bottleneck_distance(e=0).
+
+1. Each LAMMPS pair on pd0 and pd1 (floor convention: never-dying classes die at 0, so every tool
+   sees the same finite diagrams), then the sum of fnet's twelve distances per frame pair.
+2. Larger pairs built from the last pair's pd1 (copies with jitter, then a perturbed copy: what
+   consecutive frames look like): ~1 000, 5 000 and 20 000 points.
+3. The approximate mode: delta, time, bounds, true relative error vs the exact value, fnet and Hera.
+
+fnet's time is the "seconds" it reports (computation only, JSON parsing excluded); the anchors are
+timed around their call. Hera runs at relative error 0.01 (it has no exact Wasserstein). The
+diagrams are handed to GUDHI and Hera as (death, birth): the superlevel diagrams lie below the
+diagonal, and GUDHI's bottleneck silently ignores such points (it returned 0.0 in 0.0 ms);
+swapping the coordinates keeps every L-infinity distance. POT needs the dense (n+1) x (m+1)
+matrix and GUDHI's exact bottleneck takes ~30 s at 5 000 points, so both run up to 5 000 only.
 """
 import json
+import os
 import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
+
+POT_MAX_POINTS = 5000
+FNET_TIMEOUT = 60  # seconds per fnet call; a timeout prints as nan (the 20 000-point exact W1/W2)
 
 
 def finite(points):
@@ -20,10 +34,14 @@ def finite(points):
 
 
 def fnet(exe, fa, fb, dim, metric, delta=0.0):
-    out = subprocess.run([exe, "distance", fa, fb, "--metric", metric, "--dim", str(dim), "--delta", str(delta)],
-                         capture_output=True, text=True, check=True).stdout
+    try:
+        out = subprocess.run([exe, "distance", fa, fb, "--metric", metric, "--dim", str(dim), "--delta", str(delta)],
+                             capture_output=True, text=True, check=True, timeout=FNET_TIMEOUT).stdout
+    except subprocess.TimeoutExpired:
+        nan = float("nan")
+        return nan, nan, nan, nan
     j = json.loads(out)
-    return j["value"], j["seconds"]
+    return j["value"], j["seconds"], j["lower"], j["upper"]
 
 
 def timed(f):
@@ -41,38 +59,121 @@ def pot_wasserstein(a, b, q):
     c[n, :m] = ((b[:, 0] - b[:, 1]) / 2) ** q
     wa = np.append(np.ones(n), m)
     wb = np.append(np.ones(m), n)
-    return float(ot.emd2(wa, wb, c, numItermax=10_000_000)) ** (1 / q)
+    return float(ot.emd2(wa, wb, c, numItermax=100_000_000)) ** (1 / q)
+
+
+def anchors(a, b, q):
+    """(hera value, hera s, POT value, POT s, gudhi value, gudhi s) for q (None: bottleneck)."""
+    import gudhi
+    import gudhi.hera
+    sa, sb = np.ascontiguousarray(a[:, ::-1]), np.ascontiguousarray(b[:, ::-1])
+    nan = float("nan")
+    if q is None:
+        hv, ht = timed(lambda: gudhi.hera.bottleneck_distance(sa, sb, delta=0.01))
+        gv, gt = nan, nan
+        if max(len(a), len(b)) <= POT_MAX_POINTS:  # 30 s at 5 000 points
+            gv, gt = timed(lambda: gudhi.bottleneck_distance(sa, sb, 0))
+        return hv, ht, nan, nan, gv, gt
+    hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(sa, sb, order=q, internal_p=np.inf, delta=0.01))
+    pv, pt = nan, nan
+    if max(len(a), len(b)) <= POT_MAX_POINTS:
+        pv, pt = timed(lambda: pot_wasserstein(a, b, q))
+    return hv, ht, pv, pt, nan, nan
+
+
+HEADER = (f"{'pair':<36}{'dim':>4}{'pts':>7}  {'metric':<11}{'fnet ms':>10}{'hera ms':>10}{'POT ms':>10}"
+          f"{'gudhi ms':>10}{'hera/fnet':>11}  {'fnet value':>14}{'hera/fnet-1':>13}{'POT/fnet-1':>12}{'gudhi/fnet-1':>13}")
+
+
+def rel(x, v):
+    return (x / v - 1) if v and x == x else (0.0 if x == v else float("nan"))
+
+
+def compare(exe, name, fa, fb, a, b, dim):
+    total = 0.0
+    for metric, q in (("bottleneck", None), ("W1", 1), ("W2", 2)):
+        cli = {"bottleneck": "bottleneck", "W1": "wasserstein1", "W2": "wasserstein2"}[metric]
+        v, t, _, _ = fnet(exe, fa, fb, dim, cli)
+        total += t
+        hv, ht, pv, pt, gv, gt = anchors(a, b, q)
+        print(f"{name:<36}{dim:>4}{max(len(a), len(b)):>7}  {metric:<11}{t*1e3:>10.1f}{ht*1e3:>10.1f}{pt*1e3:>10.1f}"
+              f"{gt*1e3:>10.1f}{ht / t if t else float('inf'):>10.1f}x  {v:>14.8g}{rel(hv, v):>13.2e}{rel(pv, v):>12.2e}"
+              f"{rel(gv, v):>13.2e}", flush=True)
+    return total
+
+
+def write_pd1(path, points):
+    with open(path, "w") as f:
+        json.dump({"pd0": [], "pd1": [[float(x), float(y)] for x, y in points]}, f)
+
+
+def scaled_pair(base, size, rng):
+    """A: copies of base, each point's coordinates scaled by 1 + 5% noise (distinct values, same
+    structure: most points on y = 0 under floor); B: A moved by up to 1% of the mean birth, 2% of the
+    points dropped and as many small new ones added."""
+    reps = int(np.ceil(size / len(base)))
+    a = np.concatenate([base * (1 + 0.05 * rng.random((len(base), 1))) for _ in range(reps)])[:size]
+    scale = float(np.mean(a[:, 0]))
+    b = a + rng.uniform(-0.01, 0.01, a.shape) * scale
+    b[a[:, 1] == 0, 1] = 0  # floor'ed classes stay at 0
+    b[:, 0] = np.maximum(b[:, 0], b[:, 1])
+    keep = rng.random(len(b)) > 0.02
+    b = b[keep]
+    extra = rng.random((size - len(b), 1)) * 0.2 * scale
+    b = np.concatenate([b, np.hstack([extra, np.zeros_like(extra)])])
+    b = b[b[:, 0] > b[:, 1]]
+    return a, b
 
 
 def main(argv):
-    import gudhi
-    import gudhi.hera
     exe = argv[1]
     files = argv[2:]
-    print(f"{'pair':<28}{'dim':>4}{'pts':>7}  {'metric':<8}{'fnet ms':>10}{'hera ms':>10}{'POT ms':>10}"
-          f"{'gudhi ms':>10}  {'fnet value':>14}{'hera/fnet-1':>13}{'POT/fnet-1':>12}")
+    print("== LAMMPS frame pairs (floor) ==")
+    print(HEADER)
+    sums = {}
     for k in range(0, len(files), 2):
         fa, fb = files[k], files[k + 1]
         name = fa.split("/")[-1].replace(".json", "") + "->" + fb.split("/")[-1].replace(".json", "")
+        frames = name.replace("_normal", "").replace("_tangential", "")
         da, db = json.load(open(fa)), json.load(open(fb))
         for dim in (0, 1):
             a, b = finite(da[f"pd{dim}"]), finite(db[f"pd{dim}"])
-            pts = max(len(a), len(b))
-            for metric, q in (("bottleneck", None), ("W1", 1), ("W2", 2)):
-                cli = {"bottleneck": "bottleneck", "W1": "wasserstein1", "W2": "wasserstein2"}[metric]
-                v, t = fnet(exe, fa, fb, dim, cli)
-                if q is None:
-                    hv, ht = timed(lambda: gudhi.hera.bottleneck_distance(a, b, delta=0.01))
-                    gv, gt = timed(lambda: gudhi.bottleneck_distance(a, b, 0))
-                    pv, pt = float("nan"), float("nan")
-                else:
-                    hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(a, b, order=q, internal_p=np.inf,
-                                                                           delta=0.01))
-                    pv, pt = timed(lambda: pot_wasserstein(a, b, q))
-                    gt = float("nan")
-                print(f"{name:<28}{dim:>4}{pts:>7}  {metric:<8}{t*1e3:>10.1f}{ht*1e3:>10.1f}{pt*1e3:>10.1f}"
-                      f"{gt*1e3:>10.1f}  {v:>14.8g}{hv/v-1 if v else 0:>13.2e}"
-                      f"{(pv/v-1) if v and pv == pv else float('nan'):>12.2e}", flush=True)
+            sums[frames] = sums.get(frames, 0.0) + compare(exe, name, fa, fb, a, b, dim)
+    for frames, s in sums.items():
+        print(f"fnet, twelve exact distances of {frames} (d_B, W1, W2 x pd0, pd1 x normal, tangential): "
+              f"{s*1e3:.1f} ms")
+
+    base = finite(json.load(open(files[-1]))["pd1"])
+    rng = np.random.default_rng(2026)
+    print("\n== Larger pairs: jittered copies of the last pair's pd1, B a perturbed copy of A ==")
+    print(HEADER)
+    with tempfile.TemporaryDirectory() as tmp:
+        small = None
+        for size in (1000, 5000, 20000):
+            a, b = scaled_pair(base, size, rng)
+            fa, fb = os.path.join(tmp, f"a{size}.json"), os.path.join(tmp, f"b{size}.json")
+            write_pd1(fa, a)
+            write_pd1(fb, b)
+            compare(exe, f"perturbed copies {size}", fa, fb, a, b, 1)
+            small = small or (fa, fb, a, b)
+
+        print("\n== Approximate mode on the 1 000-point pair (pd1): fnet answers delta > 0 exactly ==")
+        print(f"{'metric':<8}{'delta':>8}{'fnet ms':>10}{'hera ms':>10}{'value':>16}{'lower':>16}"
+              f"{'true rel err':>14}{'bound (u-l)/l':>15}{'hera rel err':>14}")
+        fa, fb, a, b = small
+        import gudhi.hera
+        sa, sb = np.ascontiguousarray(a[:, ::-1]), np.ascontiguousarray(b[:, ::-1])
+        for metric, q in (("W1", 1), ("W2", 2)):
+            cli = {"W1": "wasserstein1", "W2": "wasserstein2"}[metric]
+            exact, _, _, _ = fnet(exe, fa, fb, 1, cli)
+            for delta in (0.5, 0.1, 0.01, 0.001, 0.0):
+                v, t, lo, up = fnet(exe, fa, fb, 1, cli, delta)
+                hv, ht = float("nan"), float("nan")
+                if delta > 0:
+                    hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(sa, sb, order=q, internal_p=np.inf,
+                                                                           delta=delta))
+                print(f"{metric:<8}{delta:>8g}{t*1e3:>10.1f}{ht*1e3:>10.1f}{v:>16.10g}{lo:>16.10g}"
+                      f"{v / exact - 1:>14.2e}{(up - lo) / lo if lo else 0:>15.2e}{hv / exact - 1:>14.2e}", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,64 @@
+// All twelve exact distances of frame pairs (d_B, W1, W2 x PD0, PD1, per file pair), timed in
+// process (median of repeats), with the Wasserstein solver's work counters.
+//   bench_distance [--repeat R] A.json B.json [A2.json B2.json ...]
+// Files: fnet-analyze diagram output ({"pd0": [[b, d], ...], "pd1": ...}).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/bottleneck.hpp"
+#include "common/diagram_json.hpp"
+#include "common/wasserstein.hpp"
+
+using namespace fnet;
+
+int main(int argc, char** argv) {
+  int repeat = 5;
+  std::vector<std::string> files;
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "--repeat" && k + 1 < argc) repeat = std::max(1, std::atoi(argv[++k]));
+    else files.push_back(arg);
+  }
+  if (files.empty() || files.size() % 2) {
+    std::fprintf(stderr, "usage: bench_distance [--repeat R] A.json B.json [...]\n");
+    return 2;
+  }
+  const auto load = [](const std::string& path, int dim) {
+    std::ifstream in(path);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return diagram_from_json(j.at(dim ? "pd1" : "pd0"));
+  };
+  std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s\n", "pair", "dim", "pts", "metric", "ms", "value",
+              "augment", "settled/boxes");
+  for (std::size_t f = 0; f < files.size(); f += 2) {
+    double pair_total = 0;
+    for (int dim = 0; dim < 2; ++dim) {
+      const Diagram a = load(files[f], dim), b = load(files[f + 1], dim);
+      for (const double q : {0.0, 1.0, 2.0}) {
+        std::vector<double> times;
+        double value = 0;
+        WassersteinStats st;
+        for (int r = 0; r < repeat; ++r) {
+          const auto start = std::chrono::steady_clock::now();
+          value = q == 0 ? bottleneck_distance(a, b).value : wasserstein_distance(a, b, {.q = q}, &st).value;
+          times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        std::sort(times.begin(), times.end());
+        const double t = times[times.size() / 2];
+        pair_total += t;
+        const std::string name = files[f].substr(files[f].rfind('/') + 1) + "->" + files[f + 1].substr(files[f + 1].rfind('/') + 1);
+        std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu\n", name.c_str(), dim, std::max(a.size(), b.size()),
+                    q == 0 ? "bottleneck" : q == 1 ? "W1" : "W2", t * 1e3, value, st.augmentations, st.settled, st.boxes_opened);
+      }
+    }
+    std::printf("  six distances of this file pair: %.2f ms\n", pair_total * 1e3);
+  }
+  return 0;
+}
