@@ -10,25 +10,11 @@
 #include <sys/mman.h>
 #endif
 
+#include "common/huge_pages.hpp"
 #include "common/radix_sort.hpp"
 
 namespace fnet {
 namespace {
-
-// Asks for transparent huge pages on a large allocation that nothing has touched yet: the first
-// touch then maps 2 MiB per page fault instead of 4 KiB. Page faults are what a large frame
-// spends most of its time on otherwise (measured: ~24 us per 4 KiB fault on a paravirtualized
-// guest). Only advice: without THP, or on other systems, nothing changes.
-void prefer_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
-  if (bytes < 2 * kHuge) return;
-  const auto first = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-  const auto last = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-}
-
 
 // Uninitialized records kept by each thread between calls: a service analyses frame after frame
 // of similar size, and fresh memory costs a page fault per page on every call. Reallocated when
@@ -75,10 +61,12 @@ ForceNetwork build_network(const Frame& frame, ForceKind kind) {
   for (const Contact& c : frame.contacts) {
     const double force = std::fabs(c.*field);
     if (!(force > 0)) continue;
-    const auto a = static_cast<std::uint64_t>(c.i), b = static_cast<std::uint64_t>(c.j);
+    auto i = static_cast<std::uint64_t>(c.i), j = static_cast<std::uint64_t>(c.j);
+    const std::uint64_t swap = (i ^ j) & (std::uint64_t{0} - (j < i));  // rows list pairs either way:
+    i ^= swap, j ^= swap;                                                // no branch to mispredict
     const std::uint64_t key = ~std::bit_cast<std::uint64_t>(force);
     lo = std::min(lo, key), hi = std::max(hi, key);
-    all[n++] = {key, a < b ? a << 32 | b : b << 32 | a};
+    all[n++] = {key, i << 32 | j};
   }
   if (n == 0) return net;
   const std::span<const KeyedRecord> items = sort_keyed(all.first(n), scratch_buffer.get(n), lo, hi);
@@ -95,9 +83,12 @@ ForceNetwork build_network(const Frame& frame, ForceKind kind) {
   net.mean_force = static_cast<double>(sum / static_cast<long double>(n));
   net.edges.reserve(n);
   prefer_huge_pages(net.edges.data(), n * sizeof(Edge));
-  for (const KeyedRecord& r : items)
-    net.edges.push_back({static_cast<std::uint32_t>(r.tie >> 32), static_cast<std::uint32_t>(r.tie),
-                         std::bit_cast<double>(~r.key) / net.mean_force});
+  net.edges.resize(n);
+  Edge* out = net.edges.data();
+  const double mean = net.mean_force;
+  for (std::size_t e = 0; e < n; ++e)
+    out[e] = {static_cast<std::uint32_t>(items[e].tie >> 32), static_cast<std::uint32_t>(items[e].tie),
+              std::bit_cast<double>(~items[e].key) / mean};
   return net;
 }
 

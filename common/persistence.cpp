@@ -19,6 +19,8 @@
 #include <sys/mman.h>
 #endif
 
+#include "common/huge_pages.hpp"
+
 namespace fnet {
 namespace {
 
@@ -29,9 +31,10 @@ namespace {
 // gives the canonical order without sorting.
 //
 // Per edge the work is small and its branches are coin flips on the data (is this vertex new,
-// is this edge a merge, does it close a triangle), so the hot path avoids them: selects by mask,
-// unconditional writes, loops of fixed length. On frames larger than the cache it is bound by
-// memory latency instead, hence one cache line per vertex and prefetches two steps ahead.
+// does it close a triangle, which root is deeper), so the hot path avoids them: selects by
+// mask, unconditional writes, loops of fixed length. One stays, merge or cycle: each side skips
+// half the work (measured to pay). On frames larger than the cache the sweep is bound by memory
+// latency instead, hence one cache line per vertex and prefetches two steps ahead.
 
 using Index = std::uint32_t;
 constexpr Index kNone = std::numeric_limits<Index>::max();
@@ -44,19 +47,15 @@ struct Neighbour {
   Index vertex, edge;
 };
 
-// Branch-free selection. Compilers turn `c ? a : b` into a jump when they guess it predictable;
-// telling them it is a coin flip gets a conditional move.
-#if defined(__GNUC__)
-#define FNET_COIN_FLIP(c) __builtin_expect_with_probability(static_cast<bool>(c), true, 0.5)
-#else
-#define FNET_COIN_FLIP(c) (c)
-#endif
-
-inline Index pick(bool c, Index if_true, Index if_false) { return FNET_COIN_FLIP(c) ? if_true : if_false; }
+// Branch-free selection: compilers turn `c ? a : b` on unpredictable data into jumps more often
+// than not (even when told it is a coin flip); masks they leave alone.
+inline Index pick(bool c, Index if_true, Index if_false) {
+  return if_false ^ ((if_false ^ if_true) & (Index{0} - c));
+}
 
 inline double pick(bool c, double if_true, double if_false) {
   const auto t = std::bit_cast<std::uint64_t>(if_true), f = std::bit_cast<std::uint64_t>(if_false);
-  return std::bit_cast<double>(FNET_COIN_FLIP(c) ? t : f);
+  return std::bit_cast<double>(f ^ ((f ^ t) & (std::uint64_t{0} - c)));
 }
 
 // (min, max) without a jump.
@@ -105,20 +104,6 @@ struct SortedAdjacency {
   }
 };
 
-// Asks for transparent huge pages on a large allocation that nothing has touched yet: the first
-// touch then maps 2 MiB per page fault instead of 4 KiB. Page faults are what a large frame
-// spends much of its time on otherwise (measured: ~24 us per 4 KiB fault on a paravirtualized
-// guest). Only advice: without THP, or on other systems, nothing changes.
-void prefer_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
-  if (bytes < 2 * kHuge) return;
-  const auto first = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-  const auto last = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-}
-
 // Uninitialized storage kept between calls. It is reallocated when too small, and also when
 // more than four times too large, so that one huge frame does not pin its memory for good.
 template <class T>
@@ -134,6 +119,18 @@ class Buffer {
     return data_.get();
   }
 
+  // Room for n, keeping the first `used` entries.
+  T* grow(std::size_t n, std::size_t used) {
+    auto bigger = std::make_unique_for_overwrite<T[]>(n);
+    prefer_huge_pages(bigger.get(), n * sizeof(T));
+    std::copy(data_.get(), data_.get() + used, bigger.get());
+    data_ = std::move(bigger);
+    capacity_ = n;
+    return data_.get();
+  }
+
+  std::size_t capacity() const { return capacity_; }
+
  private:
   std::unique_ptr<T[]> data_;
   std::size_t capacity_ = 0;
@@ -144,9 +141,10 @@ class Buffer {
 struct Workspace {
   Buffer<Vertex> vertices;
   Buffer<Index> link;             // per edge: the column in the pool that owns it as a pivot
-  Buffer<double> death;           // per edge: death of the class born there, or kNotABirth
-  Buffer<std::uint64_t> cycle;    // bit per edge: it closes a cycle
-  std::vector<Index> pool;        // reduced columns: size, then sorted edge positions
+  Buffer<double> death;           // per edge: death of the class born there, or kNotABirth; + a spare
+  Buffer<std::uint8_t> loop;      // per edge: it closes a cycle
+  Buffer<PersistencePoint> points[2];  // PD0 and PD1 before they are copied out
+  Buffer<Index> pool;             // reduced columns: size, then sorted edge positions
   std::vector<std::vector<Neighbour>> spill;
   std::vector<std::pair<Index, Index>> closing;
   std::vector<Neighbour> list_a, list_b;
@@ -160,13 +158,12 @@ class Sweep {
         edges_(net.edges.data()),
         m_(static_cast<Index>(net.edges.size())),
         vertex_(ws.vertices.get(net.vertex_count)),
-        link_(ws.link.get(net.edges.size() + 1)),
+        link_(ws.link.get(net.edges.size())),
         death_(ws.death.get(net.edges.size() + 1)),
-        cycle_(ws.cycle.get(net.edges.size() / 64 + 1)),
+        loop_(ws.loop.get(net.edges.size())),
+        pool_(ws.pool.get(4 * net.edges.size() + 64)),
         ws_(ws) {
-    if (net.edges.size() >= kNone - 1) throw std::length_error("compute_persistence: too many edges");
-    std::fill(cycle_, cycle_ + net.edges.size() / 64 + 1, 0);
-    if (ws.pool.size() < 64 || 4 * expected_pool() < ws.pool.size()) ws.pool = std::vector<Index>(64);
+    if (net.edges.size() >= kNone / 8) throw std::length_error("compute_persistence: too many edges");
     ws.spill.clear();
   }
 
@@ -177,43 +174,85 @@ class Sweep {
   }
 
  private:
+  // The hot loop keeps its counters in locals (registers) and leaves the rare paths (a vertex
+  // of degree > kInline, a second triangle on the same edge) to out-of-line members.
   void sweep() {
+    Vertex* const vertex = vertex_;
+    const Edge* const edges = edges_;
+    double* const death = death_;
+    Index* const link = link_;
+    std::uint8_t* const loop = loop_;
+    std::size_t touched = 0, births = 0, cycles = 0, triangles = 0;
+    static constexpr double kFirstDeath[2] = {kNotABirth, kNeverDies};
     // Edge k + 16 brings its endpoints' lines in (from DRAM on a large frame, from L2 on a
     // small one); by edge k + 8 they have arrived, and their parents' lines (mostly the roots)
     // are requested in turn.
     constexpr Index kFar = 16, kNear = 8;
     for (Index k = 0; k < m_; ++k) {
       if (k + kFar < m_) [[likely]] {
-        __builtin_prefetch(&vertex_[edges_[k + kFar].u]);
-        __builtin_prefetch(&vertex_[edges_[k + kFar].v]);
+        __builtin_prefetch(&vertex[edges[k + kFar].u]);
+        __builtin_prefetch(&vertex[edges[k + kFar].v]);
       }
       if (k + kNear < m_) [[likely]] {
-        __builtin_prefetch(&vertex_[vertex_[edges_[k + kNear].u].parent]);
-        __builtin_prefetch(&vertex_[vertex_[edges_[k + kNear].v].parent]);
+        __builtin_prefetch(&vertex[vertex[edges[k + kNear].u].parent]);
+        __builtin_prefetch(&vertex[vertex[edges[k + kNear].v].parent]);
       }
-      const Index u = edges_[k].u, v = edges_[k].v;
-      Vertex& x = vertex_[u];
-      Vertex& y = vertex_[v];
+      const Index u = edges[k].u, v = edges[k].v;
+      Vertex& x = vertex[u];
+      Vertex& y = vertex[v];
       const bool fresh_u = x.count == 0, fresh_v = y.count == 0;  // a vertex enters with its strongest edge
-      x.birth = pick(fresh_u, k, x.birth);
-      y.birth = pick(fresh_v, k, y.birth);
-      touched_ += fresh_u + fresh_v;
+      touched += fresh_u + fresh_v;
       const bool born = fresh_u & fresh_v;  // only then does a component survive edge k
-      births_ += born;
+      births += born;
+
       const Index ru = find(u), rv = find(v);
-      const bool cycle = ru == rv;
-      join(ru, rv, k, cycle);
-      death_[k] = pick(born | cycle, kNeverDies, kNotABirth);
-      cycle_[k / 64] |= std::uint64_t{cycle} << (k % 64);
-      cycles_ += cycle;
-      // A merge edge closes no triangle (its endpoints have no common neighbour yet), so the
-      // search runs for every edge rather than behind a branch on `cycle`.
-      const std::span<const std::pair<Index, Index>> closing = collect_triangles(k, x, y);
-      pair_apparent(k, closing);
-      if (closing.size() > 1) [[unlikely]] reduce(k, closing.subspan(1));
+      loop[k] = ru == rv;
+      if (ru != rv) {
+        // Elder rule: the component born at the later position dies at k (if that is k
+        // itself, it is a fresh vertex, whose birth still reads kNone: zero persistence). Trees
+        // are linked by rank; the surviving root carries the elder birth. A merge edge closes
+        // no triangle: its endpoints have no common neighbour yet.
+        Vertex& a = vertex[ru];
+        Vertex& b = vertex[rv];
+        const auto [elder, younger] = ordered(std::min(a.birth, k), std::min(b.birth, k));
+        death[pick(younger == k, m_, younger)] = edges[k].value;
+        death[k] = kFirstDeath[born];
+        link[k] = kNone;
+        const bool under_b = a.rank < b.rank;
+        const Index root = pick(under_b, rv, ru);
+        vertex[root].rank = static_cast<std::uint8_t>(std::max(a.rank, b.rank) + (a.rank == b.rank));
+        vertex[pick(under_b, ru, rv)].parent = root;
+        vertex[root].birth = elder;
+      } else {
+        // A loop is born at k, unless k closes a triangle: the first such triangle pairs with k
+        // itself (an apparent pair, zero persistence). Its column is written whether or not
+        // there is a triangle, and kept only if there is one; the pool always has room for 4
+        // more entries per edge to come (see store_column).
+        ++cycles;
+        std::pair<Index, Index> found[kInline];
+        std::span<const std::pair<Index, Index>> closing;
+        if (x.count > kInline || y.count > kInline) [[unlikely]] {
+          closing = collect_triangles_spilled(k, x, y);
+          found[0] = {};
+        } else {
+          closing = {found, collect_triangles(x, y, found)};
+        }
+        const bool any = !closing.empty();
+        const std::pair<Index, Index>* const first[2] = {found, closing.data()};
+        const auto [a, b] = ordered(first[any]->first, first[any]->second);
+        Index* at = pool_ + pool_size_;
+        at[0] = 3, at[1] = a, at[2] = b, at[3] = k;
+        link[k] = pick(any, static_cast<Index>(pool_size_), kNone);
+        pool_size_ += 4 & (std::size_t{0} - any);
+        death[k] = kFirstDeath[!any];
+        triangles += closing.size();
+        if (closing.size() > 1) [[unlikely]] reduce(k, closing.subspan(1));
+      }
+
       append(x, v, k);
       append(y, u, k);
     }
+    touched_ = touched, births_ = births, cycles_ = cycles, triangles_ = triangles;
   }
 
   // Path halving. Trees linked by rank are shallow: depth <= 2 is checked without a loop.
@@ -229,23 +268,6 @@ class Sweep {
       x = grandparent;
     }
     return x;
-  }
-
-  // Elder rule: the component born at the later position dies at k (if it was born at k, it
-  // is a fresh vertex: zero persistence). The trees are linked by rank; the surviving root
-  // carries the elder birth. A no-op when ru == rv (a cycle edge): the write that must not
-  // happen goes to the spare slot m, the others write back what is there.
-  void join(Index ru, Index rv, Index k, bool cycle) {
-    Vertex& a = vertex_[ru];
-    Vertex& b = vertex_[rv];
-    const auto [elder, younger] = ordered(a.birth, b.birth);
-    death_[pick(cycle | (younger == k), m_, younger)] = edges_[k].value;
-    const std::uint8_t rank = static_cast<std::uint8_t>(std::max(a.rank, b.rank) + ((a.rank == b.rank) & !cycle));
-    const bool under_b = a.rank < b.rank;
-    const Index root = pick(under_b, rv, ru);
-    vertex_[pick(under_b, ru, rv)].parent = root;
-    vertex_[root].rank = rank;
-    vertex_[root].birth = elder;
   }
 
   void append(Vertex& x, Index w, Index k) {
@@ -268,14 +290,12 @@ class Sweep {
     ws_.spill[x.spill].push_back(n);
   }
 
-  // The triangles whose weakest edge is k: common neighbours of its endpoints through earlier
-  // edges. Returns the other two edges of each.
-  std::span<const std::pair<Index, Index>> collect_triangles(Index k, const Vertex& x, const Vertex& y) {
-    if (x.count > kInline || y.count > kInline) [[unlikely]]
-      return collect_triangles_spilled(k, x, y);
-    // Each neighbour of the shorter list against all slots of the other at once, masked to the
-    // filled ones. A vertex appears at most once in a list, so each one matches once at most;
-    // the match is written whether or not there is one, and counted only if there is.
+  // Common neighbours of two vertices with inline lists, as the pair of edges reaching each;
+  // returns how many. Each neighbour of the shorter list is compared with all slots of the
+  // other at once, masked to the filled ones; a vertex is in a list once, so it matches once
+  // at most. The match is written whether or not there is one, and counted only if there is.
+  // Three rounds always (94% of edges need no more), so the loop's end is no coin flip.
+  static std::size_t collect_triangles(const Vertex& x, const Vertex& y, std::pair<Index, Index>* found) {
     const Vertex* const xy[2] = {&x, &y};
     const bool y_shorter = y.count < x.count;
     const Vertex& s = *xy[y_shorter];
@@ -285,20 +305,22 @@ class Sweep {
     const __m128i low = _mm_load_si128(reinterpret_cast<const __m128i*>(l.nbr));
     const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(l.nbr + 4));  // 2 slots + via[0..1]
     const unsigned filled = (1u << l.count) - 1;
-    for (std::size_t i = 0; i < s.count; ++i) {
+    const auto round = [&](std::size_t i) {
       const __m128i w = _mm_set1_epi32(static_cast<int>(s.nbr[i]));
       const unsigned hits = (static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(w, low)))) |
                              static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(w, high)))) << 4) &
-                            filled;
-      found_[n] = ordered(s.via[i], l.via[std::countr_zero(hits | (1u << (kInline - 1)))]);
+                            filled & (0u - (i < s.count));
+      found[n] = {s.via[i], l.via[std::countr_zero(hits | (1u << (kInline - 1)))]};
       n += hits != 0;
-    }
+    };
+    round(0), round(1), round(2);
+    for (std::size_t i = 3; i < s.count; ++i) round(i);
 #else
     for (std::size_t i = 0; i < s.count; ++i)
       for (std::size_t j = 0; j < l.count; ++j)
-        if (s.nbr[i] == l.nbr[j]) found_[n++] = ordered(s.via[i], l.via[j]);
+        if (s.nbr[i] == l.nbr[j]) found[n++] = {s.via[i], l.via[j]};
 #endif
-    return {found_, n};
+    return n;
   }
 
   static void list_of(const Vertex& x, const std::vector<std::vector<Neighbour>>& spill, std::vector<Neighbour>& out) {
@@ -335,28 +357,15 @@ class Sweep {
     return closing;
   }
 
-  bool closes_cycle(Index k) const { return (cycle_[k / 64] >> (k % 64)) & 1; }
+  bool closes_cycle(Index k) const { return loop_[k]; }
 
-  // Room for `size` more entries at the end of the pool.
-  Index* reserve_pool(std::size_t size) {
-    auto& pool = ws_.pool;
-    if (pool_size_ + size > pool.size()) [[unlikely]] {
-      if (pool_size_ + size >= kNone) throw std::length_error("compute_persistence: column pool full");
-      const std::size_t capacity = std::max({2 * pool.size(), pool_size_ + size, expected_pool()});
-      pool.reserve(capacity);
-      prefer_huge_pages(pool.data() + pool.size(), (capacity - pool.size()) * sizeof(Index));
-      pool.resize(capacity);
-    }
-    return pool.data() + pool_size_;
-  }
-
-  // Apparent pairs alone take 4 entries per triangle; a contact network has about 0.4
-  // triangles per edge.
-  std::size_t expected_pool() const { return 2 * static_cast<std::size_t>(m_) + 64; }
-
-  // The column of a triangle that owns `pivot`, killing the loop born there at k.
+  // The column of a triangle that owns `pivot`, killing the loop born there at k. The pool
+  // keeps room for the apparent pairs of all edges after k, 4 entries each.
   Index* store_column(Index pivot, Index k, std::size_t size) {
-    Index* at = reserve_pool(size + 1);
+    const std::size_t needed = pool_size_ + size + 1 + 4 * static_cast<std::size_t>(m_ - k) + 64;
+    if (needed > ws_.pool.capacity()) pool_ = ws_.pool.grow(std::max(needed, 2 * ws_.pool.capacity()), pool_size_);
+    if (pool_size_ + size + 1 >= kNone) throw std::length_error("compute_persistence: column pool full");
+    Index* at = pool_ + pool_size_;
     link_[pivot] = static_cast<Index>(pool_size_);
     death_[pivot] = edges_[k].value;
     at[0] = static_cast<Index>(size);
@@ -364,31 +373,18 @@ class Sweep {
     return at + 1;
   }
 
-  // The first triangle closed by k pairs with k itself: an apparent pair, zero persistence.
-  // Its column is written whether or not there is a triangle, and kept only if there is one.
-  void pair_apparent(Index k, std::span<const std::pair<Index, Index>> closing) {
-    const bool any = !closing.empty();
-    const std::pair<Index, Index>* const first[2] = {found_, closing.data()};
-    const std::pair<Index, Index>& t = *first[any];
-    Index* at = reserve_pool(4);
-    at[0] = 3, at[1] = t.first, at[2] = t.second, at[3] = k;
-    link_[k] = pick(any, static_cast<Index>(pool_size_), kNone);
-    death_[k] = pick(any, edges_[k].value, death_[k]);
-    pool_size_ += 4 & (std::size_t{0} - any);
-    triangles_ += closing.size();
-  }
-
   // Z/2 reduction of the boundary columns of the other triangles closed by edge k, against the
   // columns owning their pivots, until the pivot is new (the triangle kills the loop born
   // there) or the column vanishes (it closes a 2-cycle, possible only in non-planar graphs).
   // The pivot of a column is always an edge that closed a cycle: merge edges own nothing.
   [[gnu::noinline]] void reduce(Index k, std::span<const std::pair<Index, Index>> closing) {
-    for (const auto& [a, b] : closing) {
+    for (const auto& [e, f] : closing) {
       Index* column = scratch(0, 3);
+      const auto [a, b] = ordered(e, f);
       column[0] = a, column[1] = b, column[2] = k;
       std::size_t size = 3, in = 0;
       while (size > 0 && link_[column[size - 1]] != kNone) {
-        const Index* other = ws_.pool.data() + link_[column[size - 1]];
+        const Index* other = pool_ + link_[column[size - 1]];
         Index* sum = scratch(1 - in, size + other[0]);
         size = symmetric_difference(column, size, other + 1, other[0], sum);
         column = sum, in = 1 - in;
@@ -425,30 +421,34 @@ class Sweep {
   // vertices) or a loop (it closed a cycle); death_ holds that class's death. Every slot is
   // written, and kept only if it holds a point of positive persistence.
   FrameDiagrams diagrams() {
-    FrameDiagrams out;
-    out.vertices = net_.vertex_count;
-    out.edges = m_;
-    out.triangles = triangles_;
-    for (auto [d, size] : {std::pair{&out.pd0, births_ + 1}, std::pair{&out.pd1, cycles_ + 1}}) {
-      d->reserve(size);
-      prefer_huge_pages(d->data(), size * sizeof(PersistencePoint));
-      d->resize(size);
-    }
-    PersistencePoint* p0 = out.pd0.data();
-    PersistencePoint* p1 = out.pd1.data();
+    PersistencePoint* const first0 = ws_.points[0].get(births_ + 1);
+    PersistencePoint* const first1 = ws_.points[1].get(cycles_ + 1);
+    PersistencePoint *p0 = first0, *p1 = first1;
     for (Index k = 0; k < m_; ++k) {
       const double birth = edges_[k].value, death = death_[k];
-      const bool loop = closes_cycle(k), kept = (death == kNeverDies) | (birth > death);
+      const bool loop = loop_[k], kept = (death == kNeverDies) | (birth > death);
       *p0 = *p1 = {birth, death};
       p1 += loop & kept;
       p0 += !loop & kept;
     }
-    out.pd0.resize(static_cast<std::size_t>(p0 - out.pd0.data()));
-    out.pd1.resize(static_cast<std::size_t>(p1 - out.pd1.data()));
-    order_ties(out.pd0);
-    order_ties(out.pd1);
-    out.pd0.insert(out.pd0.end(), net_.vertex_count - touched_, PersistencePoint{0.0, kNeverDies});  // rattlers
+    FrameDiagrams out;
+    out.vertices = net_.vertex_count;
+    out.edges = m_;
+    out.triangles = triangles_;
+    const std::size_t rattlers = net_.vertex_count - touched_;
+    export_points(first0, p0, rattlers, out.pd0);
+    export_points(first1, p1, 0, out.pd1);
+    out.pd0.insert(out.pd0.end(), rattlers, PersistencePoint{0.0, kNeverDies});  // they come last: birth 0
     return out;
+  }
+
+  // Copies points into a diagram allocated once at its final size.
+  static void export_points(const PersistencePoint* first, const PersistencePoint* last, std::size_t extra, Diagram& out) {
+    const auto n = static_cast<std::size_t>(last - first);
+    out.reserve(n + extra);
+    prefer_huge_pages(out.data(), (n + extra) * sizeof(PersistencePoint));
+    out.assign(first, last);
+    order_ties(out);
   }
 
   // Points come out by birth, descending; equal births (ties in force) need death descending.
@@ -467,7 +467,8 @@ class Sweep {
   Vertex* vertex_;
   Index* link_;
   double* death_;
-  std::uint64_t* cycle_;
+  std::uint8_t* loop_;
+  Index* pool_;
   Workspace& ws_;
   std::optional<SortedAdjacency> sorted_;
   std::pair<Index, Index> found_[kInline] = {};

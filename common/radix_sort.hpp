@@ -1,4 +1,4 @@
-// Radix sorts for the hot path: a stable LSD sort of records by a 64-bit key, and an MSD sort of
+// Radix sorts for the hot path: a stable LSD sort of records by a 64-bit key, and a sort of
 // (key, tie) pairs that orders edges by force value with a total, input-independent tie order.
 #pragma once
 
@@ -69,17 +69,16 @@ inline void insertion_sort(KeyedRecord* a, std::size_t n) {
   }
 }
 
-// One MSD level: the range [lo, hi] of the keys in hand is cut into about as many buckets as
-// there are records (at most 2^MaxBits), so that typical force data (a few dense binades) lands
-// mostly one or two records a bucket after a single scatter; crowded buckets take another level,
-// now hot in cache. Digits are at most 14 bits at the top and 11 below: the counts on the stack
-// stay small (64 KiB, then 8 KiB a level) and the scatter's open lines fit in L2.
-// Scatters a[0, n) into out; end[b] is then the end of bucket b. Returns the bucket count.
+// One MSD level, for a crowd of records whose keys the LSD passes could not tell apart: the
+// range [lo, hi] of their keys is cut into about as many buckets as there are records (at most
+// 2^MaxBits), and crowded buckets take another level. Whatever the distribution, each level
+// narrows the range, so no input makes this quadratic. Scatters a[0, n) into out; end[b] is
+// then the end of bucket b. Returns the bucket count.
 template <int MaxBits>
 std::size_t scatter(const KeyedRecord* a, KeyedRecord* out, std::size_t n, std::uint64_t lo, std::uint64_t hi,
-                    std::uint32_t* end, int extra_bits = 0) {
+                    std::uint32_t* end) {
   const int width = static_cast<int>(std::bit_width(hi - lo));
-  const int bits = std::min(std::clamp(static_cast<int>(std::bit_width(n)) + extra_bits, 4, MaxBits), width);
+  const int bits = std::min(std::clamp(static_cast<int>(std::bit_width(n)), 4, MaxBits), width);
   const int shift = width - bits;
   const std::size_t buckets = std::size_t{1} << bits;
   std::fill(end, end + buckets, 0u);  // counts, then starts, then (after the scatter) ends
@@ -94,10 +93,9 @@ inline void sort_ties(KeyedRecord* a, std::size_t n) {
   std::sort(a, a + n, [](const KeyedRecord& x, const KeyedRecord& y) { return x.tie < y.tie; });
 }
 
-// A crowded bucket, sorted in place (tmp as scratch). Small buckets are left to the final
-// insertion pass, which moves records only within their bucket: everything before a bucket
-// is strictly smaller.
-inline void sort_bucket(KeyedRecord* a, KeyedRecord* tmp, std::size_t n) {
+// A crowd sorted in place (tmp as scratch): small buckets by insertion, larger ones recursively.
+inline void sort_crowd(KeyedRecord* a, KeyedRecord* tmp, std::size_t n) {
+  if (n <= kInsertionRun) return insertion_sort(a, n);
   std::uint64_t lo = a[0].key, hi = a[0].key;
   for (std::size_t i = 1; i < n; ++i) lo = std::min(lo, a[i].key), hi = std::max(hi, a[i].key);
   if (lo == hi) return sort_ties(a, n);
@@ -105,7 +103,50 @@ inline void sort_bucket(KeyedRecord* a, KeyedRecord* tmp, std::size_t n) {
   const std::size_t buckets = scatter<11>(a, tmp, n, lo, hi, end);
   std::memcpy(static_cast<void*>(a), tmp, n * sizeof(KeyedRecord));
   for (std::size_t b = 0, first = 0; b < buckets; first = end[b++])
-    if (end[b] - first > kInsertionRun) sort_bucket(a + first, tmp + first, end[b] - first);
+    if (end[b] - first > 1) sort_crowd(a + first, tmp + first, end[b] - first);
+}
+
+// LSD radix on the top bits of key - lo, about ten bits finer than there are records, in Passes
+// stable passes of 11 bits with all counts taken in one pass. Records then differ in those bits
+// but for rare crowds, which one more pass finds and sorts; the branch that finds them is
+// predictable, unlike sorting every small bucket. Returns whichever buffer holds the result.
+template <int Passes>
+std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch, std::uint64_t lo,
+                                int width) {
+  constexpr int digit = 11;
+  constexpr std::uint64_t mask = (std::uint64_t{1} << digit) - 1;
+  const int shift = std::max(0, width - digit * Passes);
+  std::uint32_t start[Passes][1 << digit] = {};
+  for (const KeyedRecord& r : items) {
+    const std::uint64_t d = (r.key - lo) >> shift;
+    for (int p = 0; p < Passes; ++p) ++start[p][(d >> (p * digit)) & mask];
+  }
+  for (auto& counts : start) {
+    std::uint32_t sum = 0;
+    for (std::size_t b = 0; b <= mask; ++b) sum += std::exchange(counts[b], sum);
+  }
+  std::span<KeyedRecord> from = items, to = scratch.first(items.size());
+  for (int p = 0; p < Passes; ++p) {
+    const int at = shift + p * digit;
+    for (const KeyedRecord& r : from) to[start[p][((r.key - lo) >> at) & mask]++] = r;
+    std::swap(from, to);
+  }
+  const std::size_t n = from.size();
+  const auto sorted_bits = [&](std::size_t i) { return (from[i].key - lo) >> shift; };
+  for (std::size_t i = 0, j = 0; i < n; i = j) {
+    for (j = i + 1; j < n && sorted_bits(j) == sorted_bits(i);) ++j;
+    if (j - i > 1) [[unlikely]] sort_crowd(&from[i], &to[i], j - i);
+  }
+  return from;
+}
+
+inline std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch,
+                                       std::uint64_t lo, std::uint64_t hi) {
+  const int width = static_cast<int>(std::bit_width(hi - lo));
+  const int bits = std::min(width, static_cast<int>(std::bit_width(items.size())) + 10);
+  if (bits <= 22) return sort_lsd<2>(items, scratch, lo, width);
+  if (bits <= 33) return sort_lsd<3>(items, scratch, lo, width);
+  return sort_lsd<4>(items, scratch, lo, width);
 }
 
 }  // namespace detail
@@ -115,24 +156,15 @@ inline void sort_bucket(KeyedRecord* a, KeyedRecord* tmp, std::size_t n) {
 // `scratch`, whichever saves a copy. Requires items.size() < 2^32.
 inline std::span<KeyedRecord> sort_keyed(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch,
                                          std::uint64_t lo, std::uint64_t hi) {
-  const std::size_t n = items.size();
   if (lo == hi) {
-    detail::sort_ties(items.data(), n);
+    detail::sort_ties(items.data(), items.size());
     return items;
   }
-  if (n <= detail::kInsertionRun) {
-    detail::insertion_sort(items.data(), n);
+  if (items.size() <= detail::kInsertionRun) {
+    detail::insertion_sort(items.data(), items.size());
     return items;
   }
-  // Measured: half as many buckets as records is best for a few thousand records (less to
-  // clear and scan), as many as records beyond (less left to the insertion pass).
-  std::uint32_t end[1 << 14];
-  const int extra_bits = n < (std::size_t{1} << 16) ? -1 : 0;
-  const std::size_t buckets = detail::scatter<14>(items.data(), scratch.data(), n, lo, hi, end, extra_bits);
-  for (std::size_t b = 0, first = 0; b < buckets; first = end[b++])
-    if (end[b] - first > detail::kInsertionRun) detail::sort_bucket(&scratch[first], &items[first], end[b] - first);
-  detail::insertion_sort(scratch.data(), n);
-  return scratch.first(n);
+  return detail::sort_lsd(items, scratch, lo, hi);
 }
 
 }  // namespace fnet

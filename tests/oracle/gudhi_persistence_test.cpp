@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,54 @@ std::string kind_name(ForceKind kind) { return std::string(to_string(kind)); }
 
 INSTANTIATE_TEST_SUITE_P(Frames, SyntheticOracle,
                          ::testing::Combine(::testing::ValuesIn(synthetic_cases()),
+                                            ::testing::Values(ForceKind::normal, ForceKind::tangential)),
+                         [](const auto& test) {
+                           return std::get<0>(test.param).name + "_" + kind_name(std::get<1>(test.param));
+                         });
+
+// Graphs no packing produces, for the paths a packing never takes: vertices of high degree
+// (neighbour lists spill out of line, and long lists meet), cliques of every size (2-cycles
+// and beyond), a hub touching everything. Forces are exponential with a share of exact ties.
+Frame random_graph_frame(std::size_t n, double p, bool hub, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  Frame frame;
+  frame.label = "random graph n=" + std::to_string(n) + " p=" + std::to_string(p) + (hub ? " with hub" : "") +
+                " seed=" + std::to_string(seed);
+  frame.particle_count = n;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (!(hub && i == 0) && uniform(rng) >= p) continue;
+      Contact c{static_cast<std::int64_t>(j), static_cast<std::int64_t>(i), -std::log1p(-uniform(rng)), 0};
+      if (uniform(rng) < 0.1 && !frame.contacts.empty())
+        c.fn = frame.contacts[static_cast<std::size_t>(uniform(rng) * static_cast<double>(frame.contacts.size()))].fn;
+      c.ft = uniform(rng) < 0.1 ? 0.0 : 0.5 * c.fn * uniform(rng);
+      frame.contacts.push_back(c);
+    }
+  return frame;
+}
+
+struct GraphCase {
+  std::string name;
+  std::size_t n;
+  double p;
+  bool hub;
+  std::uint64_t seed;
+};
+
+class GraphOracle : public ::testing::TestWithParam<std::tuple<GraphCase, ForceKind>> {};
+
+TEST_P(GraphOracle, SameDiagramsAsGudhi) {
+  const auto& [c, kind] = GetParam();
+  expect_same_as_gudhi(random_graph_frame(c.n, c.p, c.hub, c.seed), kind);
+}
+
+INSTANTIATE_TEST_SUITE_P(Frames, GraphOracle,
+                         ::testing::Combine(::testing::Values(GraphCase{"dense_n70_seed1", 70, 0.4, false, 1},
+                                                              GraphCase{"dense_n70_seed2", 70, 0.4, false, 2},
+                                                              GraphCase{"dense_n40_seed3", 40, 0.8, false, 3},
+                                                              GraphCase{"hub_n600_seed4", 600, 0.01, true, 4},
+                                                              GraphCase{"hub_n300_seed5", 300, 0.03, true, 5}),
                                             ::testing::Values(ForceKind::normal, ForceKind::tangential)),
                          [](const auto& test) {
                            return std::get<0>(test.param).name + "_" + kind_name(std::get<1>(test.param));

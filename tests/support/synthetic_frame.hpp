@@ -22,7 +22,7 @@ struct SyntheticOptions {
 };
 
 // Disks with diameters uniform in [0.8, 1.2] on a jittered triangular lattice (spacing 0.935,
-// jitter ~0.05), contacts where disks overlap: mean degree ~4.2, ~0.95 N triangles, ~1% rattlers.
+// jitter ~0.05), contacts where disks overlap: mean degree ~4.2, ~0.9 N triangles, ~1% rattlers.
 // Normal forces are exponential (mean 1), a few slightly tensile or exactly zero; tangential
 // forces are |ft| <= 0.5 |fn|, with sliding contacts exactly at the cap and some exact zeros.
 // Particle ids are a random permutation of the positions, as in a simulator after mixing.
