@@ -98,28 +98,7 @@ void gear_correct(Simulation& s) {
               s.fy.data(), s.torque.data(), s.inv_mass.data(), s.inv_inertia.data(), h, s.n);
 }
 
-// Scaled velocity v Δt gets a half kick of a Δt²/2; position moves by v Δt.
-bool verlet_first_half(Simulation& s, double limit2) {
-  const double h = 0.5 * s.c.dt * s.c.dt;
-  double* __restrict x0 = s.x[0].data();
-  double* __restrict x1 = s.x[1].data();
-  double* __restrict y0 = s.y[0].data();
-  double* __restrict y1 = s.y[1].data();
-  double* __restrict t0 = s.th[0].data();
-  double* __restrict t1 = s.th[1].data();
-  const double* __restrict im = s.inv_mass.data();
-  const double* __restrict ii = s.inv_inertia.data();
-  for (std::size_t i = 0; i < s.n; ++i) {
-    x1[i] += h * s.fx[i] * im[i];
-    y1[i] += h * s.fy[i] * im[i];
-    t1[i] += h * s.torque[i] * ii[i];
-    x0[i] += x1[i];
-    y0[i] += y1[i];
-    t0[i] += t1[i];
-  }
-  return moved_beyond(s, limit2);
-}
-
+// Half kick: the scaled velocity v Δt gains a Δt²/2.
 void verlet_second_half(Simulation& s) {
   const double h = 0.5 * s.c.dt * s.c.dt;
   double* __restrict x1 = s.x[1].data();
@@ -132,6 +111,23 @@ void verlet_second_half(Simulation& s) {
     y1[i] += h * s.fy[i] * im[i];
     t1[i] += h * s.torque[i] * ii[i];
   }
+}
+
+// A half kick, then the position moves by v Δt.
+bool verlet_first_half(Simulation& s, double limit2) {
+  verlet_second_half(s);
+  double* __restrict x0 = s.x[0].data();
+  double* __restrict y0 = s.y[0].data();
+  double* __restrict t0 = s.th[0].data();
+  const double* __restrict x1 = s.x[1].data();
+  const double* __restrict y1 = s.y[1].data();
+  const double* __restrict t1 = s.th[1].data();
+  for (std::size_t i = 0; i < s.n; ++i) {
+    x0[i] += x1[i];
+    y0[i] += y1[i];
+    t0[i] += t1[i];
+  }
+  return moved_beyond(s, limit2);
 }
 
 }  // namespace fnet::sim
