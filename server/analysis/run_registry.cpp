@@ -106,27 +106,30 @@ void Registry::on_frame(RunFrame frame) {
     return;
   }
   Slot& slot = run.pending[index];
-  slot.header = frame.header;
+  slot.frame = std::make_shared<AnalyzedFrame>();
+  slot.frame->header = frame.header;
   slot.arrived = Clock::now();
   ++in_flight_;
-  boost::asio::post(pool_, [this, id = run.run_id, index, f = std::move(frame)]() mutable { analyze(id, index, std::move(f)); });
+  boost::asio::post(pool_, [this, id = run.run_id, index, target = slot.frame, f = std::move(frame)]() mutable {
+    analyze(id, index, std::move(target), std::move(f));
+  });
 }
 
-void Registry::analyze(std::string run_id, std::uint32_t index, RunFrame frame) {
-  std::shared_ptr<const FrameDiagramSet> diagrams;
+void Registry::analyze(std::string run_id, std::uint32_t index, std::shared_ptr<AnalyzedFrame> target, RunFrame frame) {
+  bool accepted = false;
   std::string reason;
   try {
     validate(frame.frame);
-    diagrams = std::make_shared<const FrameDiagramSet>(analyze_frame(frame.frame));
+    target->diagrams = analyze_frame(frame.frame);  // nobody reads them before stage `analyzed`
+    accepted = true;
   } catch (const std::exception& e) {
     reason = e.what();
   }
   std::lock_guard lock(mutex_);
   Run& run = runs_.at(run_id);
   Slot& slot = run.pending.at(index);
-  if (diagrams) {
+  if (accepted) {
     slot.stage = Stage::analyzed;
-    slot.diagrams = std::move(diagrams);
   } else {
     slot.stage = Stage::rejected;
     slot.reason = reason;
@@ -140,7 +143,7 @@ void Registry::measure(std::string run_id, std::uint32_t index, std::shared_ptr<
   std::lock_guard lock(mutex_);
   Run& run = runs_.at(run_id);
   Slot& slot = run.pending.at(index);
-  slot.distances = distances;
+  slot.frame->distances = distances;
   slot.stage = Stage::ready;
   commit_locked(run);
 }
@@ -153,16 +156,18 @@ void Registry::advance_locked(Run& run) {
     if (it == run.pending.end() || it->second.stage == Stage::analyzing) break;
     Slot& slot = it->second;
     if (slot.stage == Stage::analyzed) {
-      slot.previous = run.last_accepted;
+      const std::optional<std::uint32_t> before = run.last_accepted;
+      slot.frame->previous = before;
       run.last_accepted = run.frontier;
-      if (slot.previous) {
-        std::shared_ptr<const FrameDiagramSet> previous;
-        if (const auto c = run.committed.find(*slot.previous); c != run.committed.end())
-          previous = std::shared_ptr<const FrameDiagramSet>(c->second, &c->second->diagrams);
-        else
-          previous = run.pending.at(*slot.previous).diagrams;
+      if (before) {
+        const auto c = run.committed.find(*before);
+        const std::shared_ptr<const AnalyzedFrame> prior =
+            c != run.committed.end() ? c->second : run.pending.at(*before).frame;
+        // Aliasing pointers: the diagrams stay owned by their frames.
+        std::shared_ptr<const FrameDiagramSet> previous(prior, &prior->diagrams);
+        std::shared_ptr<const FrameDiagramSet> current(slot.frame, &slot.frame->diagrams);
         slot.stage = Stage::measuring;
-        boost::asio::post(pool_, [this, id = run.run_id, index = run.frontier, previous, current = slot.diagrams] {
+        boost::asio::post(pool_, [this, id = run.run_id, index = run.frontier, previous, current] {
           measure(id, index, previous, current);
         });
       } else {
@@ -183,11 +188,7 @@ void Registry::commit_locked(Run& run) {
     if (slot.stage == Stage::rejected) {
       reject_locked(run, index, slot.reason);
     } else if (slot.stage == Stage::ready) {
-      auto frame = std::make_shared<AnalyzedFrame>();
-      frame->header = slot.header;
-      frame->diagrams = *slot.diagrams;
-      frame->previous = slot.previous;
-      frame->distances = slot.distances;
+      const std::shared_ptr<const AnalyzedFrame> frame = std::move(slot.frame);
       if (run.store) try {
           run.store->append(*frame);
         } catch (const std::exception& e) {

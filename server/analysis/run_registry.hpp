@@ -97,10 +97,9 @@ class Registry {
   enum class Stage { analyzing, analyzed, rejected, measuring, ready };
   struct Slot {
     Stage stage = Stage::analyzing;
-    FrameHeader header;
-    std::shared_ptr<const FrameDiagramSet> diagrams;
-    std::optional<std::uint32_t> previous;
-    StepDistances distances;
+    // Filled in stage by stage and committed as it is: the diagrams are never copied. Its
+    // diagrams are written before stage `analyzed` and only read after; the rest under the lock.
+    std::shared_ptr<AnalyzedFrame> frame;
     std::string reason;
     Clock::time_point arrived;
   };
@@ -124,7 +123,7 @@ class Registry {
   };
 
   Run& run_locked(const std::string& run_id);
-  void analyze(std::string run_id, std::uint32_t index, RunFrame frame);
+  void analyze(std::string run_id, std::uint32_t index, std::shared_ptr<AnalyzedFrame> target, RunFrame frame);
   void measure(std::string run_id, std::uint32_t index, std::shared_ptr<const FrameDiagramSet> previous,
                std::shared_ptr<const FrameDiagramSet> current);
   void advance_locked(Run& run);
