@@ -37,13 +37,7 @@ int diagram_command(const std::vector<std::string>& args) {
        "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
        "largest contact index + 1)")
       ("force", po::value(&force)->default_value("normal"), "which force network: normal or tangential");
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return 0;
-  }
-  po::notify(vm);
+  if (!parse_options(options, args)) return 0;
 
   const fnet::ForceKind kind = fnet::parse_force_kind(force);
   fnet::Frame frame = fnet::read_frame_csv(

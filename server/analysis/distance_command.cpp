@@ -70,28 +70,23 @@ int distance_command(const std::vector<std::string>& args) {
       ("files", po::value(&files), "A.json B.json");
   po::positional_options_description positional;
   positional.add("files", 2);
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return 0;
-  }
-  po::notify(vm);
+  const auto vm = parse_options(options, args, &positional);
+  if (!vm) return 0;
   if (files.size() != 2) throw po::error("two diagram files are required");
   if (dim != 0 && dim != 1) throw po::error("--dim must be 0 or 1");
   if (!std::isfinite(delta) || delta < 0) throw po::error("--delta must be a finite number >= 0");
   if (metric == "wasserstein1") {
-    if (vm.count("q") && q != 1) throw po::error("--q contradicts --metric wasserstein1");
+    if (vm->count("q") && q != 1) throw po::error("--q contradicts --metric wasserstein1");
     q = 1;
   } else if (metric == "wasserstein2") {
-    if (vm.count("q") && q != 2) throw po::error("--q contradicts --metric wasserstein2");
+    if (vm->count("q") && q != 2) throw po::error("--q contradicts --metric wasserstein2");
     q = 2;
   } else if (metric == "wasserstein") {
-    if (!vm.count("q")) throw po::error("--metric wasserstein needs --q");
+    if (!vm->count("q")) throw po::error("--metric wasserstein needs --q");
     if (!std::isfinite(q) || q < 1) throw po::error("--q must be a finite number >= 1");
   } else if (metric != "bottleneck") {
     throw po::error("unknown --metric '" + metric + "' (bottleneck, wasserstein1, wasserstein2, wasserstein)");
-  } else if (vm.count("q")) {
+  } else if (vm->count("q")) {
     throw po::error("--q applies to the Wasserstein metrics only");
   }
   const EssentialConvention convention = parse_essential_convention(essential);

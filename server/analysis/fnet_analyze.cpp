@@ -24,6 +24,25 @@ constexpr const char* kUsage =
 
 }  // namespace
 
+namespace fnet::analyze {
+
+std::optional<boost::program_options::variables_map> parse_options(const boost::program_options::options_description& options, const std::vector<std::string>& args,
+                   const boost::program_options::positional_options_description* positional) {
+  namespace po = boost::program_options;
+  po::variables_map vm;
+  auto parser = po::command_line_parser(args).options(options);
+  if (positional) parser.positional(*positional);
+  po::store(parser.run(), vm);
+  if (vm.count("help")) {
+    std::cout << options << "\n";
+    return std::nullopt;
+  }
+  po::notify(vm);
+  return vm;
+}
+
+}  // namespace fnet::analyze
+
 int main(int argc, char** argv) {
   using Command = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Command> commands = {

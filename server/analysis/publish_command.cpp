@@ -33,13 +33,7 @@ int publish_command(const std::vector<std::string>& args) {
        "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")
       ("linger", po::value(&linger)->default_value(0),
        "seconds to keep serving late subscribers from the durability history after the last frame");
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return 0;
-  }
-  po::notify(vm);
+  if (!parse_options(options, args)) return 0;
   auto [info, frames] = source.read();
   dds::FramePublisher publisher(static_cast<dds_domainid_t>(domain));
   // Discovery takes a moment; frames written before it are still served to late readers only

@@ -26,13 +26,7 @@ int store_command(const std::vector<std::string>& args) {
   options.add_options()("help,h", "show this help");
   source.add_options(options);
   options.add_options()("data-dir", po::value(&data_dir)->required(), "directory of run stores");
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return 0;
-  }
-  po::notify(vm);
+  if (!parse_options(options, args)) return 0;
   auto [info, frames] = source.read();
   std::map<std::uint32_t, RunFrame*> ordered;  // first occurrence of each index wins, as live
   for (RunFrame& f : frames) ordered.try_emplace(f.header.index, &f);
