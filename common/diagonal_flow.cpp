@@ -16,20 +16,14 @@ constexpr std::int64_t kGenerator[2] = {-1, -2};  // heap ids of the two hubs' l
 constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
 }  // namespace
 
-DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::vector<Arc> arcs)
+DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
+                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
     : n_(static_cast<std::uint32_t>(diagonal_a.size())), m_(static_cast<std::uint32_t>(diagonal_b.size())),
       ha_(n_ + m_), hb_(n_ + m_ + 1), da_(std::move(diagonal_a)), db_(std::move(diagonal_b)),
       mate_a_(n_, kNone), mate_b_(m_, kNone), mate_cost_a_(n_, 0), pi_(n_ + m_ + 2, 0.0),
       key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()), dist_(n_ + m_ + 2, kInf),
       pred_cost_(n_ + m_ + 2, 0), pred_(n_ + m_ + 2, 0), seen_(n_ + m_ + 2, 0), final_(n_ + m_ + 2, 0) {
-  rebuild_rows(std::move(arcs));
   for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
-}
-
-DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
-                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
-    : DiagonalFlow(std::move(diagonal_a), std::move(diagonal_b), {}) {
-  implicit_ = true;
   q_ = q;
   pa_.assign(a.begin(), a.end());
   tree_b_ = std::make_unique<LinfKdTree>(b);
@@ -208,58 +202,7 @@ void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
 }
 
 void DiagonalFlow::update_box_maxima(std::uint32_t j) {
-  const auto nodes = tree_b_->nodes();
-  const auto order = tree_b_->order();
   for (std::int32_t k = leaf_of_b_[j]; k >= 0 && recompute_box(k); k = box_parent_[k]) {
-  }
-}
-
-void DiagonalFlow::rebuild_rows(std::vector<Arc> arcs) {
-  std::sort(arcs.begin(), arcs.end(), [](const Arc& x, const Arc& y) {
-    return x.row != y.row ? x.row < y.row : x.col < y.col;
-  });
-  arcs.erase(std::unique(arcs.begin(), arcs.end(),
-                         [](const Arc& x, const Arc& y) { return x.row == y.row && x.col == y.col; }),
-             arcs.end());
-  row_start_.assign(n_ + 1, 0);
-  row_col_.resize(arcs.size());
-  row_cost_.resize(arcs.size());
-  for (const Arc& arc : arcs) ++row_start_[arc.row + 1];
-  for (std::uint32_t i = 0; i < n_; ++i) row_start_[i + 1] += row_start_[i];
-  for (std::size_t k = 0; k < arcs.size(); ++k) row_col_[k] = arcs[k].col, row_cost_[k] = arcs[k].cost;
-}
-
-bool DiagonalFlow::has_arc(std::uint32_t row, std::uint32_t col) const {
-  if (implicit_) return true;
-  const auto first = row_col_.begin() + row_start_[row], last = row_col_.begin() + row_start_[row + 1];
-  return std::binary_search(first, last, col);
-}
-
-void DiagonalFlow::add_arcs(std::vector<Arc> arcs) {
-  if (implicit_) return;  // the graph is already complete
-  std::vector<Arc> all;
-  all.reserve(row_col_.size() + arcs.size());
-  for (std::uint32_t i = 0; i < n_; ++i)
-    for (std::uint32_t k = row_start_[i]; k < row_start_[i + 1]; ++k) all.push_back({i, row_col_[k], row_cost_[k]});
-  std::vector<std::uint32_t> released;
-  for (const Arc& arc : arcs)
-    if (!has_arc(arc.row, arc.col)) all.push_back(arc), released.push_back(arc.row);
-  rebuild_rows(std::move(all));
-  std::sort(released.begin(), released.end());
-  released.erase(std::unique(released.begin(), released.end()), released.end());
-  for (const std::uint32_t i : released) {
-    if (mate_a_[i] >= 0) {
-      mate_b_[mate_a_[i]] = kNone;
-    } else if (mate_a_[i] == kDiagonal) {
-      --a_to_diagonal_;
-    }
-    mate_a_[i] = kNone;
-    // No arc enters a_i now; lift its potential until every arc out of it has reduced cost >= 0.
-    double p = pi_[hb_] - da_[i];
-    for (std::uint32_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
-      p = std::max(p, pi_[n_ + row_col_[k]] - row_cost_[k]);
-    pi_[i] = p;
-    refresh(i);
   }
 }
 
@@ -269,22 +212,6 @@ double DiagonalFlow::primal_cost() const {
   for (std::uint32_t j = 0; j < m_; ++j)
     if (mate_b_[j] < 0) cost += db_[j];
   return cost;
-}
-
-double DiagonalFlow::dual_without_pairs() const {
-  double dual = static_cast<double>(n_) * pi_[hb_] - static_cast<double>(m_) * pi_[ha_];
-  for (std::uint32_t i = 0; i < n_; ++i) {
-    dual -= pi_[i];
-    dual -= std::max(0.0, -(da_[i] + pi_[i] - pi_[hb_]));
-  }
-  for (std::uint32_t j = 0; j < m_; ++j) {
-    dual += pi_[n_ + j];
-    dual -= std::max(0.0, -(db_[j] + pi_[ha_] - pi_[n_ + j]));
-  }
-  // HA -> HB is unbounded: a negative reduced cost there would void the bound. The solver keeps it
-  // >= 0 up to rounding; treat anything worse as no bound at all.
-  if (pi_[ha_] - pi_[hb_] < -1e-9 * (std::fabs(pi_[ha_]) + std::fabs(pi_[hb_]))) return -kInf;
-  return dual;
 }
 
 void DiagonalFlow::refresh(std::uint32_t node) {
@@ -337,12 +264,7 @@ void DiagonalFlow::push_generator(int which) {
 
 void DiagonalFlow::scan(std::uint32_t u, double d) {
   if (u < n_) {
-    for (std::uint32_t k = row_start_[u]; k < row_start_[u + 1]; ++k) {
-      const std::uint32_t j = row_col_[k];
-      if (mate_a_[u] == static_cast<std::int64_t>(j)) continue;
-      relax(n_ + j, d + std::max(0.0, row_cost_[k] + pi_[u] - pi_[n_ + j]), u, row_cost_[k]);
-    }
-    if (implicit_ && !tree_b_->nodes().empty()) {
+    if (!tree_b_->nodes().empty()) {
       const double key = box_key(u, 0);
       if (key <= d) {
         open_box(u, 0);
@@ -418,7 +340,7 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
     final_[u] = run_;
     finalized_.push_back(u);
     ++settled_;
-    if (implicit_ && u >= n_ && u < n_ + m_) {
+    if (u >= n_ && u < n_ + m_) {
       for (std::int32_t k = leaf_of_b_[u - n_]; k >= 0; k = box_parent_[k]) {
         if (box_run_[k] != run_) box_run_[k] = run_, box_done_[k] = 0;
         ++box_done_[k];
@@ -441,9 +363,8 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
   for (const std::uint32_t v : finalized_) pi_[v] -= total - dist_[v];
   augment(source, static_cast<std::uint32_t>(target));
   for (const std::uint32_t v : finalized_) refresh(v);
-  if (implicit_)
-    for (const std::uint32_t v : finalized_)
-      if (v >= n_ && v < n_ + m_) update_box_maxima(v - n_);
+  for (const std::uint32_t v : finalized_)
+    if (v >= n_ && v < n_ + m_) update_box_maxima(v - n_);
   return true;
 }
 
@@ -490,20 +411,26 @@ void DiagonalFlow::augment(std::uint32_t source, std::uint32_t target) {
   ++augmentations_;
 }
 
-void DiagonalFlow::solve() { solve(std::numeric_limits<std::size_t>::max()); }
+double DiagonalFlow::dual_bound() const {
+  // LP duality on the assignment form (every arc but HA -> HB has capacity 1, which changes
+  // nothing as each a_i supplies and each b_j takes one unit): demand * potential minus supply *
+  // potential, minus each capacity-1 arc's negative reduced cost. The pair arcs all have reduced
+  // cost >= 0 (the searches scan them all; pairs with c_ij >= da_i + db_j are left out of the
+  // problem, which keeps its optimum). The hub arcs into a point already matched to the diagonal
+  // are never scanned (they only close cycles) and may go negative: charged here.
+  double dual = static_cast<double>(n_) * pi_[hb_] - static_cast<double>(m_) * pi_[ha_];
+  for (std::uint32_t i = 0; i < n_; ++i) dual -= pi_[i] + std::max(0.0, -(da_[i] + pi_[i] - pi_[hb_]));
+  for (std::uint32_t j = 0; j < m_; ++j) dual += pi_[n_ + j] - std::max(0.0, -(db_[j] + pi_[ha_] - pi_[n_ + j]));
+  // HA -> HB is unbounded: a negative reduced cost there (beyond rounding) voids the bound.
+  if (pi_[ha_] - pi_[hb_] < -1e-12 * (std::fabs(pi_[ha_]) + std::fabs(pi_[hb_]))) return -kInf;
+  return dual;
+}
 
-bool DiagonalFlow::solve(std::size_t budget) {
-  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0) {
-    if (budget-- == 0) return false;
+void DiagonalFlow::solve() {
+  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0)
     if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
-  }
-  for (; next_row_ < n_; ++next_row_) {
-    if (mate_a_[next_row_] != kNone) continue;
-    if (budget-- == 0) return false;
-    if (!dijkstra(next_row_)) throw std::logic_error("diagonal flow: no augmenting path");
-  }
-  next_row_ = 0;  // rows released later by add_arcs are found again
-  return true;
+  for (std::uint32_t i = 0; i < n_; ++i)
+    if (mate_a_[i] == kNone && !dijkstra(i)) throw std::logic_error("diagonal flow: no augmenting path");
 }
 
 }  // namespace fnet

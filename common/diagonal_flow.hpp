@@ -1,12 +1,12 @@
 // The Wasserstein matching between diagrams A and B as a min-cost flow, with the diagonal as two
 // hubs instead of n + m diagonal copies:
-//   a_i -> b_j   cost c_ij (candidate arcs only), a_i -> HB cost da_i (a_i to the diagonal),
+//   a_i -> b_j   cost c_ij, a_i -> HB cost da_i (a_i to the diagonal),
 //   HA  -> b_j   cost db_j (b_j from the diagonal),  HA -> HB cost 0, unbounded.
 // Supplies: a_i 1, HA m; demands: b_j 1, HB n. Solved by successive shortest paths (Dijkstra with
 // potentials, early exit); the hubs' many arcs are scanned lazily from ordered sets, so a search
 // costs what it visits, not O(n + m). Internal to the Wasserstein distance.
 //
-// Implicit mode (the geometric constructor): every pair (a_i, b_j) with c_ij < da_i + db_j is an
+// The pair arcs are implicit: every pair (a_i, b_j) with c_ij < da_i + db_j is an
 // arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
 // a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
 // any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (for q = 1 also the
@@ -34,28 +34,16 @@ class DiagonalFlow {
  public:
   static constexpr std::int64_t kNone = -1, kDiagonal = -2;
 
-  struct Arc {
-    std::uint32_t row, col;
-    double cost;
-  };
-
-  // Costs to the diagonal, already raised to the power q. Arcs: candidate pairs (a_i, b_j).
-  DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::vector<Arc> arcs);
-  // Implicit complete graph: c_ij = ||a_i - b_j||_inf ^ q (a and b already scaled like the costs).
+  // Costs to the diagonal, already raised to the power q; c_ij = ||a_i - b_j||_inf ^ q (a and b
+  // already scaled like the costs).
   DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::span<const PlanePoint> a,
                std::span<const PlanePoint> b, double q);
 
-  // Completes the flow to an optimal one on the current arcs; keeps what it has (warm start).
+  // Completes the flow to an optimal one.
   void solve();
-  // At most budget augmentations; true when the flow is complete (and optimal on the current arcs).
-  // In between, the potentials still give a lower bound (dual_without_pairs minus the pairs'
-  // negative reduced costs) and primal_cost() the cost of a matching (unrouted points to the diagonal).
-  bool solve(std::size_t budget);
-
-  // Adds arcs (pairs already present are skipped); every row that gets one is released: its unit
-  // goes back to its source and its potential is raised to keep all reduced costs >= 0.
-  void add_arcs(std::vector<Arc> arcs);
-  bool has_arc(std::uint32_t row, std::uint32_t col) const;
+  // A lower bound on the optimal cost from the current potentials (LP duality), valid at any
+  // time; once solve() returns it equals primal_cost() up to rounding: the optimality certificate.
+  double dual_bound() const;
 
   // The current flow's cost: matched pairs plus points sent to the diagonal.
   double primal_cost() const;
@@ -69,14 +57,7 @@ class DiagonalFlow {
   std::size_t settled() const { return settled_; }
   std::size_t boxes_opened() const { return boxes_opened_; }
 
-  // The dual objective of the current potentials over every arc except the pairs (a_i, b_j),
-  // whose negative reduced costs the caller subtracts: sum of demand * potential, minus the
-  // capacity-weighted negative reduced costs of the hub arcs. A lower bound on the optimum once
-  // the pairs are accounted for, whatever the potentials.
-  double dual_without_pairs() const;
-
  private:
-  void rebuild_rows(std::vector<Arc> arcs);
   // A shortest path from source to a sink, then augment; false when no sink is reachable.
   bool dijkstra(std::uint32_t source);
   void augment(std::uint32_t source, std::uint32_t target);
@@ -91,10 +72,7 @@ class DiagonalFlow {
   void update_box_maxima(std::uint32_t j);
 
   std::uint32_t n_, m_, ha_, hb_;
-  std::uint32_t next_row_ = 0;
   std::vector<double> da_, db_;
-  std::vector<std::uint32_t> row_start_, row_col_;
-  std::vector<double> row_cost_;
 
   std::vector<std::int64_t> mate_a_, mate_b_;  // partner index, kDiagonal or kNone
   std::vector<double> mate_cost_a_;
@@ -109,9 +87,8 @@ class DiagonalFlow {
   Cursor cursor_[2];
   double hub_dist_[2] = {0, 0};
 
-  // Implicit mode: the tree over B, per node the max of pi(b) (an upper bound: potentials only fall
+  // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
   // between refreshes), each node's parent and each point's leaf.
-  bool implicit_ = false;
   double q_ = 1;
   std::vector<PlanePoint> pa_;
   std::unique_ptr<LinfKdTree> tree_b_;
