@@ -10,12 +10,21 @@
 // computes with the same constants.
 #pragma once
 
+#include <cstddef>
+#include <functional>
+
 namespace fnet::sim {
 
 struct Simulation;
+class Workers;
 
 // Zeroes and accumulates fx, fy, torque of every body (wall particles receive their reactions),
-// advances ξ, and records fn, ft, touching per pair.
-void compute_forces(Simulation& s);
+// advances ξ, and records fn, ft, touching per pair. With a team of more than one thread, the
+// pairs are evaluated in parallel (each force stored with its pair), then every body sums its
+// pairs in the order the serial loop adds them: the same bits for any team size. `then` is called
+// for slices of grains whose forces are complete (with a team, on the thread that summed them,
+// so that an element-wise update such as the corrector needs no loop of its own).
+using GrainsDone = std::function<void(std::size_t begin, std::size_t end)>;
+void compute_forces(Simulation& s, Workers* workers = nullptr, const GrainsDone& then = {});
 
 }  // namespace fnet::sim

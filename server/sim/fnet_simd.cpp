@@ -21,6 +21,7 @@
 #include "server/sim/lammps_data.hpp"
 #include "server/sim/output_sinks.hpp"
 #include "server/sim/protocol.hpp"
+#include "server/sim/workers.hpp"
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
@@ -84,6 +85,7 @@ int main(int argc, char** argv) try {
   std::string config, export_dir, checkpoint_path, run_id, integrator, lammps_data, out_file;
   double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
   int domain = 0;
+  unsigned threads = 1;
   options.add_options()
       ("help,h", "show this help")
       ("config", po::value(&config), "JSON object of parameters (keys: the names in --show-params)")
@@ -105,6 +107,8 @@ int main(int argc, char** argv) try {
       ("relax-max-time", po::value<double>(), "longest relaxation, tau_c (default 2e5)")
       ("skin", po::value<double>(), "Verlet-list skin, d (default 0.15)")
       ("integrator", po::value(&integrator), "gear (the paper's, default) or verlet")
+      ("threads", po::value(&threads)->default_value(1),
+       "threads for the time steps (forces and the Gear step); the results are the same bits for any count")
       ("run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")
       ("export-csv", po::value(&export_dir), "write frames as CSV files into this directory")
       ("out", po::value(&out_file), "write the run (parameters and every frame) to this HDF5 file (proto/run_file.md)")
@@ -191,8 +195,11 @@ int main(int argc, char** argv) try {
   if (run_id.empty()) run_id = "fnet-simd-seed" + std::to_string(sim.params.seed);
   if (!lammps_data.empty()) write_lammps_data(sim, lammps_data);
 
+  if (threads < 1 || threads > 256) throw std::runtime_error("--threads must be between 1 and 256");
+  Workers workers(threads);
   RunOptions o;
   o.run_id = run_id;
+  o.workers = &workers;
   const std::size_t first_frame = resume && sim.phase != Phase::relax ? sim.next_frame : 0;
   const fnet::RunInfo info = run_info(sim.params, run_id);
   std::vector<FrameSink> sinks;
@@ -229,9 +236,9 @@ int main(int argc, char** argv) try {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const auto steps = static_cast<double>(sim.step - steps_before);
   if (!vm.count("quiet") || finished)
-    std::fprintf(stderr, "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu)\n",
+    std::fprintf(stderr, "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu, %u thread%s)\n",
                  static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
-                 steps * static_cast<double>(sim.n) / seconds, sim.n);
+                 steps * static_cast<double>(sim.n) / seconds, sim.n, threads, threads == 1 ? "" : "s");
   run_file.reset();  // closed now: readers need not wait while late DDS subscribers are served
   if (dds) {
     if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");

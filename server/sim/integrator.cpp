@@ -1,9 +1,11 @@
 #include "server/sim/integrator.hpp"
 
+#include <atomic>
 #include <cstddef>
 
 #include "server/sim/clones.hpp"
 #include "server/sim/simulation.hpp"
+#include "server/sim/workers.hpp"
 
 namespace fnet::sim {
 namespace {
@@ -75,27 +77,49 @@ bool moved_beyond(const Simulation& s, double limit2) {
   }
 }
 
-}  // namespace
-
 // One pass over the grains predicts x, y and θ (the same arithmetic as three separate passes, so
 // the same bits) and checks the displacement since the last list build.
-bool gear_predict(Simulation& s, double limit2) {
+}  // namespace
+
+// Grains [b, e) only: the loops are element-wise, so a team splits them without changing a bit.
+bool gear_predict_range(Simulation& s, double limit2, std::size_t b, std::size_t e) {
   auto& x = s.x;
   auto& y = s.y;
   auto& t = s.th;
-  return predict_all(x[0].data(), x[1].data(), x[2].data(), x[3].data(), x[4].data(), y[0].data(), y[1].data(),
-                     y[2].data(), y[3].data(), y[4].data(), t[0].data(), t[1].data(), t[2].data(), t[3].data(),
-                     t[4].data(), s.list.x_build.data(), s.list.y_build.data(), limit2, s.n);
+  return predict_all(x[0].data() + b, x[1].data() + b, x[2].data() + b, x[3].data() + b, x[4].data() + b,
+                     y[0].data() + b, y[1].data() + b, y[2].data() + b, y[3].data() + b, y[4].data() + b,
+                     t[0].data() + b, t[1].data() + b, t[2].data() + b, t[3].data() + b, t[4].data() + b,
+                     s.list.x_build.data() + b, s.list.y_build.data() + b, limit2, e - b);
 }
 
-void gear_correct(Simulation& s) {
+void gear_correct_range(Simulation& s, std::size_t b, std::size_t e) {
   auto& x = s.x;
   auto& y = s.y;
   auto& t = s.th;
   const double h = 0.5 * s.c.dt * s.c.dt;  // a Δt² / 2 is the scaled second derivative
-  correct_all(x[0].data(), x[1].data(), x[2].data(), x[3].data(), x[4].data(), y[0].data(), y[1].data(), y[2].data(),
-              y[3].data(), y[4].data(), t[0].data(), t[1].data(), t[2].data(), t[3].data(), t[4].data(), s.fx.data(),
-              s.fy.data(), s.torque.data(), s.inv_mass.data(), s.inv_inertia.data(), h, s.n);
+  correct_all(x[0].data() + b, x[1].data() + b, x[2].data() + b, x[3].data() + b, x[4].data() + b, y[0].data() + b,
+              y[1].data() + b, y[2].data() + b, y[3].data() + b, y[4].data() + b, t[0].data() + b, t[1].data() + b,
+              t[2].data() + b, t[3].data() + b, t[4].data() + b, s.fx.data() + b, s.fy.data() + b,
+              s.torque.data() + b, s.inv_mass.data() + b, s.inv_inertia.data() + b, h, e - b);
+}
+
+// A team splits the grains in equal shares: each thread then predicts and corrects the grains
+// whose arrays it touched last.
+bool gear_predict(Simulation& s, double limit2, Workers* workers) {
+  if (!workers || workers->size() == 1) return gear_predict_range(s, limit2, 0, s.n);
+  const unsigned parts = workers->size();
+  std::atomic<bool> moved{false};
+  workers->run([&](unsigned part) {
+    if (gear_predict_range(s, limit2, share_begin(s.n, part, parts), share_begin(s.n, part + 1, parts)))
+      moved.store(true, std::memory_order_relaxed);
+  });
+  return moved.load();
+}
+
+void gear_correct(Simulation& s, Workers* workers) {
+  if (!workers || workers->size() == 1) return gear_correct_range(s, 0, s.n);
+  const unsigned parts = workers->size();
+  workers->run([&](unsigned part) { gear_correct_range(s, share_begin(s.n, part, parts), share_begin(s.n, part + 1, parts)); });
 }
 
 // Half kick: the scaled velocity v Δt gains a Δt²/2.

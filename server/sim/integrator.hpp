@@ -10,13 +10,19 @@
 // (LAMMPS's fix nve/sphere does the same).
 #pragma once
 
+#include <cstddef>
+
 namespace fnet::sim {
 
 struct Simulation;
+class Workers;
 
-// Each returns whether a grain has moved farther than √limit2 since the last list build.
-bool gear_predict(Simulation& s, double limit2);
-void gear_correct(Simulation& s);
+// Each returns whether a grain has moved farther than √limit2 since the last list build. The Gear
+// steps split the grains over a team when given one (element-wise: the same bits).
+bool gear_predict(Simulation& s, double limit2, Workers* workers = nullptr);
+void gear_correct(Simulation& s, Workers* workers = nullptr);
+// The corrector of grains [begin, end) only (element-wise), for a loop that fuses it with another.
+void gear_correct_range(Simulation& s, std::size_t begin, std::size_t end);
 bool verlet_first_half(Simulation& s, double limit2);
 void verlet_second_half(Simulation& s);
 

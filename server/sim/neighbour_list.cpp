@@ -107,6 +107,13 @@ void rebuild(NeighbourList& list, std::span<const double> x, std::span<const dou
   // Touching flags are recomputed by the next force evaluation; a pair with history was touching.
   for (std::size_t p = 0; p < pairs; ++p) list.touching[p] = (list.hx[p] != 0 || list.hy[p] != 0);
 
+  list.in_offset.assign(bodies + 1, 0);
+  for (std::size_t q = 0; q < pairs; ++q) ++list.in_offset[list.partner[q] + 1];
+  for (std::size_t b = 0; b < bodies; ++b) list.in_offset[b + 1] += list.in_offset[b];
+  list.in_pair.resize(pairs);
+  list.old_offset.assign(list.in_offset.begin(), list.in_offset.end() - 1);  // fill cursor (scratch)
+  for (std::size_t q = 0; q < pairs; ++q) list.in_pair[list.old_offset[list.partner[q]]++] = static_cast<std::uint32_t>(q);
+
   list.x_build.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   list.y_build.assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));
   list.wall_offset_build = wall_offset;

@@ -21,6 +21,12 @@ struct NeighbourList {
   std::vector<double> fn, ft2;         // signed normal force and |F_t|² of the last evaluation
   std::vector<std::uint8_t> touching;  // overlap > 0 at the last evaluation
 
+  // The threaded force evaluation (contact_forces.hpp): per pair the force on its grain and the
+  // torque term of the last evaluation, and the transposed list (per body, the pairs where it is
+  // the partner, in increasing pair order: the order in which the serial loop adds them).
+  std::vector<double> cfx, cfy, ctz;
+  std::vector<std::uint32_t> in_offset, in_pair;
+
   std::vector<double> x_build, y_build;  // grain positions at the last build
   double wall_offset_build = 0;
   double skin = 0;

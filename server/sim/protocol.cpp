@@ -79,7 +79,7 @@ bool run(Simulation& s, const RunOptions& o) {
   emit_due_frames();  // frame 0 of a compression that starts right here (resume at a frame)
   while (s.phase != Phase::done) {
     if (o.max_steps >= 0 && taken >= o.max_steps) return false;
-    step(s);
+    step(s, o.workers);
     ++taken;
     if (s.phase == Phase::relax && s.step % kRelaxCheck == 0) {
       const bool cold = ke_per_grain() < s.params.relax_energy;

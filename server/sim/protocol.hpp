@@ -37,6 +37,7 @@ struct RunOptions {
   double progress_seconds = 2;
   std::int64_t max_steps = -1;  // stop after this many steps of this call (tests), -1: run to the end
   std::function<bool()> should_stop;  // polled every 1024 steps (signals); true stops the run
+  Workers* workers = nullptr;         // a team for the steps (same results), or none
 };
 
 // Number of compression steps to go from the box side to ρ = rho_final, and a frame's step.

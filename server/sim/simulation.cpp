@@ -11,6 +11,8 @@
 namespace fnet::sim {
 namespace {
 
+constexpr std::size_t kTeamPairsPerGrain = 2;
+
 Simulation make(const Params& p, std::span<const GrainInit> grains) {
   validate(p);
   Simulation s;
@@ -94,19 +96,25 @@ Simulation make_custom(const Params& p, std::span<const GrainInit> grains) {
   return make(q, grains);
 }
 
-void step(Simulation& s) {
+void step(Simulation& s, Workers* team) {
+  // The team only pays once the list holds enough pairs per grain (measured on 2 cores, 2 000
+  // grains: 1.4x faster per step at rho = 0.80, 2.4 pairs per grain; 0.76x while a fresh lattice
+  // relaxes, 1.6 pairs per grain). Either way the bits are the same.
+  Workers* workers = s.list.partner.size() >= kTeamPairsPerGrain * s.n ? team : nullptr;
   const double half_skin = 0.5 * s.list.skin;
   const double limit2 = half_skin * half_skin;
-  const bool moved = s.params.integrator == Integrator::gear ? gear_predict(s, limit2) : verlet_first_half(s, limit2);
+  const bool moved =
+      s.params.integrator == Integrator::gear ? gear_predict(s, limit2, workers) : verlet_first_half(s, limit2);
   if (s.walls_moving) ++s.compress_step;
   place_walls(s);
   if (moved || std::abs(wall_offset(s) - s.list.wall_offset_build) > half_skin)
     rebuild(s.list, s.x[0], s.y[0], s.radius, s.inv_mass, s.n, wall_offset(s));
-  compute_forces(s);
-  if (s.params.integrator == Integrator::gear)
-    gear_correct(s);
-  else
+  if (s.params.integrator == Integrator::gear) {
+    compute_forces(s, workers, [&s](std::size_t begin, std::size_t end) { gear_correct_range(s, begin, end); });
+  } else {
+    compute_forces(s, workers);
     verlet_second_half(s);
+  }
   ++s.step;
 }
 

@@ -65,8 +65,12 @@ Simulation make_lattice(const Params& p);
 // Grains placed by hand inside the walls of a box of side p.box (for tests and collisions).
 Simulation make_custom(const Params& p, std::span<const GrainInit> grains);
 
+class Workers;
+
 // One time step with the configured integrator: predict, walls, list update, forces, correct.
-void step(Simulation& s);
+// With a team of threads (workers.hpp) the Gear step and the forces run split over it, giving
+// the same bits as without.
+void step(Simulation& s, Workers* workers = nullptr);
 
 // Diagnostics, in internal units.
 double kinetic_energy(const Simulation& s);        // translational + rotational, grains
