@@ -39,6 +39,15 @@ std::vector<double> oracle_distances(const Diagram& a, const Diagram& b, Essenti
                                      const std::vector<std::string>& metrics);
 bool oracle_available();
 
+// The Wasserstein solver's matching and an LP-dual lower bound computed here from its potentials,
+// every pair and hub arc scanned (dual_certificate_test.cpp explains the bound). Points as the
+// distances see them (apply_convention), neither side empty.
+struct Certificate {
+  double primal = 0, dual = 0;
+  bool matching_valid = true;
+};
+Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q);
+
 // A fresh directory under the system temp dir, removed by the destructor.
 struct TempDir {
   TempDir();

@@ -14,63 +14,18 @@
 
 #include <chrono>
 
-#include "common/diagonal_flow.hpp"
 #include "distance_support.hpp"
 #include "distance_test_util.hpp"
 
 namespace fnet::test {
 namespace {
 
-struct Certificate {
-  double primal = 0, dual = 0;
-  bool matching_valid = true;
-};
-
-double power(double x, double q) { return q == 1 ? x : q == 2 ? x * x : std::pow(x, q); }
-
-Certificate certify(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q) {
-  std::vector<double> da, db;
-  for (const PlanePoint p : a) da.push_back(power(std::fabs(p.x - p.y) / 2, q));
-  for (const PlanePoint p : b) db.push_back(power(std::fabs(p.x - p.y) / 2, q));
-  DiagonalFlow flow(da, db, a, b, q);
-  flow.solve();
-  const std::size_t n = a.size(), m = b.size();
-  const auto pi = flow.potentials();
-  const double ha = pi[n + m], hb = pi[n + m + 1];
-  Certificate cert;
-  // The matching, from the mates alone.
-  std::vector<int> used(m, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t j = flow.mate_of_a(static_cast<std::uint32_t>(i));
-    if (j >= 0) {
-      cert.matching_valid &= ++used[static_cast<std::size_t>(j)] == 1;
-      cert.primal += power(linf_distance(a[i], b[static_cast<std::size_t>(j)]), q);
-    } else {
-      cert.matching_valid &= j == DiagonalFlow::kDiagonal;
-      cert.primal += da[i];
-    }
-  }
-  for (std::size_t j = 0; j < m; ++j)
-    if (!used[j]) cert.primal += db[j];
-  // The dual bound, every arc scanned.
-  double dual = static_cast<double>(n) * hb - static_cast<double>(m) * ha;
-  for (std::size_t i = 0; i < n; ++i) dual -= pi[i] + std::max(0.0, -(da[i] + pi[i] - hb));
-  for (std::size_t j = 0; j < m; ++j) dual += pi[n + j] - std::max(0.0, -(db[j] + ha - pi[n + j]));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < m; ++j) {
-      const double c = power(linf_distance(a[i], b[j]), q);
-      if (c < da[i] + db[j]) dual -= std::max(0.0, -(c + pi[i] - pi[n + j]));
-    }
-  cert.dual = ha >= hb - 1e-12 ? dual : -std::numeric_limits<double>::infinity();
-  return cert;
-}
-
 std::vector<PlanePoint> plane(const Diagram& d) { return apply_convention(d, EssentialConvention::floor).points; }
 
 void expect_certified(const Diagram& da, const Diagram& db, double q, const std::string& what) {
   const std::vector<PlanePoint> a = plane(da), b = plane(db);
   if (a.empty() || b.empty()) return;
-  const Certificate cert = certify(a, b, q);
+  const Certificate cert = certify_wasserstein(a, b, q);
   EXPECT_TRUE(cert.matching_valid) << what;
   EXPECT_LE(cert.primal - cert.dual, 1e-11 * std::max(1.0, cert.primal))
       << what << " q=" << q << ": matching " << cert.primal << ", dual bound " << cert.dual;
