@@ -51,8 +51,9 @@ int distance_command(const std::vector<std::string>& args) {
       "  {\"value\": v, \"lower\": l, \"upper\": u, \"exact\": true|false, \"essential\": convention, \"seconds\": t}\n"
       "With --delta 0 (default) the distance is exact and lower = upper = value. With --delta D > 0 the\n"
       "value is the cost of an actual matching and upper - lower <= D * lower (bottleneck: upper <=\n"
-      "(1 + D) * lower). Under --essential separate the distance is infinite when the diagrams have\n"
-      "different numbers of never-dying classes: \"value\": null, \"infinite\": true and the reason.\n"
+      "(1 + D) * lower); the Wasserstein distances answer exactly whatever D (lower = upper). Under\n"
+      "--essential separate the distance is infinite when the diagrams have different numbers of\n"
+      "never-dying classes: \"value\": null, \"infinite\": true and the reason.\n"
       "\n"
       "options");
   std::string metric, essential = "floor";
