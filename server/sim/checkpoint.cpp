@@ -187,6 +187,9 @@ Restored load_checkpoint(const std::filesystem::path& path) {
   if (s.radius.size() != bodies || s.x[0].size() != bodies || s.x[4].size() != s.n ||
       s.list.offset.size() != s.n + 1 || s.list.hx.size() != s.list.partner.size() || s.list.meff.size() != s.list.partner.size())
     r.fail("inconsistent array sizes");
+  for (const std::uint32_t j : s.list.partner)
+    if (j >= bodies) r.fail("a pair's partner is out of range");
+  index_partners(s.list, bodies);  // not saved: derived from the list
   return out;
 }
 

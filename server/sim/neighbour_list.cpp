@@ -17,6 +17,16 @@ void setup_grid(NeighbourList& list, double lo, double hi, double max_diameter, 
   list.cell = (hi - lo) / cells;
 }
 
+void index_partners(NeighbourList& list, std::size_t bodies) {
+  const std::size_t pairs = list.partner.size();
+  list.in_offset.assign(bodies + 1, 0);
+  for (std::size_t q = 0; q < pairs; ++q) ++list.in_offset[list.partner[q] + 1];
+  for (std::size_t b = 0; b < bodies; ++b) list.in_offset[b + 1] += list.in_offset[b];
+  list.in_pair.resize(pairs);
+  list.old_offset.assign(list.in_offset.begin(), list.in_offset.end() - 1);  // fill cursor (scratch)
+  for (std::size_t q = 0; q < pairs; ++q) list.in_pair[list.old_offset[list.partner[q]]++] = static_cast<std::uint32_t>(q);
+}
+
 void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y,
              std::span<const double> radius, std::span<const double> inv_mass, std::size_t n,
              double wall_offset) {
@@ -107,12 +117,7 @@ void rebuild(NeighbourList& list, std::span<const double> x, std::span<const dou
   // Touching flags are recomputed by the next force evaluation; a pair with history was touching.
   for (std::size_t p = 0; p < pairs; ++p) list.touching[p] = (list.hx[p] != 0 || list.hy[p] != 0);
 
-  list.in_offset.assign(bodies + 1, 0);
-  for (std::size_t q = 0; q < pairs; ++q) ++list.in_offset[list.partner[q] + 1];
-  for (std::size_t b = 0; b < bodies; ++b) list.in_offset[b + 1] += list.in_offset[b];
-  list.in_pair.resize(pairs);
-  list.old_offset.assign(list.in_offset.begin(), list.in_offset.end() - 1);  // fill cursor (scratch)
-  for (std::size_t q = 0; q < pairs; ++q) list.in_pair[list.old_offset[list.partner[q]]++] = static_cast<std::uint32_t>(q);
+  index_partners(list, bodies);
 
   list.x_build.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
   list.y_build.assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));

@@ -48,6 +48,10 @@ void setup_grid(NeighbourList& list, double lo, double hi, double max_diameter, 
 // Rebuilds the list from the positions of all bodies (grains first, n of them), keeping ξ of
 // pairs present before and after. inv_mass gives m̄ (0 for walls). Throws std::runtime_error if a
 // body left the grid or is not finite.
+// Derives in_offset and in_pair from offset and partner (rebuild does it; so must whoever loads a
+// list saved without them, such as a checkpoint).
+void index_partners(NeighbourList& list, std::size_t bodies);
+
 void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y,
              std::span<const double> radius, std::span<const double> inv_mass, std::size_t n,
              double wall_offset);

@@ -109,19 +109,27 @@ TEST(Protocol, ThreadsGiveTheSameBits) {
     expect_identical(full_run(p, &team), serial);
     EXPECT_GT(team.runs(), 1000u) << "the team never worked";
   }
-  // Three quarters of the run on one thread, the rest (the dense end) on two.
+  // Three quarters of the run on one thread, saved to a checkpoint, the rest (the dense end) resumed
+  // from the file on two.
   Simulation whole = make_lattice(p);
   ASSERT_TRUE(run(whole, RunOptions{}));
   std::vector<FrameSnapshot> frames;
   RunOptions o;
   o.sink = [&](const FrameSnapshot& f) { frames.push_back(f); };
-  Simulation s = make_lattice(p);
-  o.max_steps = whole.step * 3 / 4;
-  ASSERT_FALSE(run(s, o));
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "fnet_sim_threads.ckpt";
+  {
+    Simulation s = make_lattice(p);
+    o.max_steps = whole.step * 3 / 4;
+    ASSERT_FALSE(run(s, o));
+    save_checkpoint(s, "threads-test", file);
+  }
+  Restored r = load_checkpoint(file);
+  std::filesystem::remove(file);
   Workers team(2);
   o.workers = &team;
   o.max_steps = -1;
-  ASSERT_TRUE(run(s, o));
+  ASSERT_TRUE(run(r.simulation, o));
+  EXPECT_GT(team.runs(), 100u);
   expect_identical(frames, serial);
 }
 
