@@ -23,6 +23,14 @@ void put(std::string& out, std::int64_t v) {
   out.append(buf, ec == std::errc() ? end : buf);
 }
 
+// One CSV row: the values separated by commas, then a newline.
+template <class First, class... Rest>
+void put_row(std::string& out, First first, Rest... rest) {
+  put(out, first);
+  ((out += ',', put(out, rest)), ...);
+  out += '\n';
+}
+
 void write_file(const std::filesystem::path& path, const std::string& text, bool append = false) {
   std::ofstream out(path, append ? std::ios::app : std::ios::trunc);
   out << text;
@@ -61,56 +69,21 @@ void write_frame_csv(const std::filesystem::path& dir, const FrameSnapshot& f) {
   text.reserve(64 * f.frame.particles.size());
   for (std::size_t i = 0; i < f.frame.particles.size(); ++i) {
     const fnet::Particle& p = f.frame.particles[i];
-    put(text, static_cast<std::int64_t>(i));
-    text += ',';
-    put(text, p.x);
-    text += ',';
-    put(text, p.y);
-    text += ',';
-    put(text, p.r);
-    text += '\n';
+    put_row(text, static_cast<std::int64_t>(i), p.x, p.y, p.r);
   }
   write_file(dir / frame_name(f.index, "particles"), text);
 
   text = "i,j,fn,ft\n";
-  for (const fnet::Contact& c : f.frame.contacts) {
-    put(text, c.i);
-    text += ',';
-    put(text, c.j);
-    text += ',';
-    put(text, c.fn);
-    text += ',';
-    put(text, c.ft);
-    text += '\n';
-  }
+  for (const fnet::Contact& c : f.frame.contacts) put_row(text, c.i, c.j, c.fn, c.ft);
   write_file(dir / frame_name(f.index, "contacts"), text);
 
   text = "grain,wall,side,fn,ft\n";
-  for (const WallContact& c : f.wall_contacts) {
-    put(text, c.grain);
-    text += ',';
-    put(text, c.wall_particle);
-    text += ',';
-    put(text, static_cast<std::int64_t>(c.side));
-    text += ',';
-    put(text, c.fn);
-    text += ',';
-    put(text, c.ft);
-    text += '\n';
-  }
+  for (const WallContact& c : f.wall_contacts)
+    put_row(text, c.grain, c.wall_particle, static_cast<std::int64_t>(c.side), c.fn, c.ft);
   write_file(dir / frame_name(f.index, "wall_contacts"), text);
 
   text.clear();
-  put(text, static_cast<std::int64_t>(f.index));
-  text += ',';
-  put(text, f.step);
-  text += ',';
-  put(text, f.time);
-  text += ',';
-  put(text, f.rho);
-  text += ',';
-  put(text, f.z);
-  text += '\n';
+  put_row(text, static_cast<std::int64_t>(f.index), f.step, f.time, f.rho, f.z);
   write_file(dir / "index.csv", text, /*append=*/true);
 }
 

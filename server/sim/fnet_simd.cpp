@@ -202,24 +202,18 @@ int main(int argc, char** argv) try {
   o.workers = &workers;
   const std::size_t first_frame = resume && sim.phase != Phase::relax ? sim.next_frame : 0;
   const fnet::RunInfo info = run_info(sim.params, run_id);
-  std::vector<FrameSink> sinks;
-  if (!export_dir.empty()) {
-    prepare_csv_dir(export_dir, first_frame);
-    sinks.push_back([dir = fs::path(export_dir)](const FrameSnapshot& f) { write_frame_csv(dir, f); });
-  }
+  if (!export_dir.empty()) prepare_csv_dir(export_dir, first_frame);
   std::optional<RunFileSink> run_file;
-  if (!out_file.empty()) {
-    run_file.emplace(out_file, info, resume, first_frame);
-    sinks.push_back([&run_file](const FrameSnapshot& f) { (*run_file)(f); });
-  }
+  if (!out_file.empty()) run_file.emplace(out_file, info, resume, first_frame);
   std::optional<DdsSink> dds;
-  if (publish) {
-    dds.emplace(static_cast<dds_domainid_t>(domain), info);
-    sinks.push_back([&dds](const FrameSnapshot& f) { (*dds)(f); });
-  }
-  if (!sinks.empty())
-    o.sink = [&sinks](const FrameSnapshot& f) {
-      for (const FrameSink& sink : sinks) sink(f);
+  if (publish) dds.emplace(static_cast<dds_domainid_t>(domain), info);
+  if (!export_dir.empty() || run_file || dds)
+    o.sink = [&, dir = fs::path(export_dir)](const FrameSnapshot& f) {
+      if (!dir.empty()) write_frame_csv(dir, f);
+      if (!run_file && !dds) return;
+      const fnet::RunFrame frame = run_frame(f);  // once for both outputs
+      if (run_file) (*run_file)(frame);
+      if (dds) (*dds)(frame);
     };
   if (!checkpoint_path.empty()) {
     o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path); };

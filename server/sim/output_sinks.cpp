@@ -37,7 +37,7 @@ RunFrame run_frame(const FrameSnapshot& s) {
 
 DdsSink::DdsSink(dds_domainid_t domain, const RunInfo& info) : publisher_(domain) { publisher_.publish(info); }
 
-void DdsSink::operator()(const FrameSnapshot& snapshot) { publisher_.publish(run_frame(snapshot)); }
+void DdsSink::operator()(const RunFrame& frame) { publisher_.publish(frame); }
 
 void DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
   publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
@@ -50,6 +50,6 @@ RunFileSink::RunFileSink(const std::filesystem::path& path, const RunInfo& info,
                   ? std::make_unique<RunFileWriter>(RunFileWriter::reopen(path, static_cast<std::uint32_t>(first_frame)))
                   : std::make_unique<RunFileWriter>(path, info)) {}
 
-void RunFileSink::operator()(const FrameSnapshot& snapshot) { writer_->append(run_frame(snapshot)); }
+void RunFileSink::operator()(const RunFrame& frame) { writer_->append(frame); }
 
 }  // namespace fnet::sim

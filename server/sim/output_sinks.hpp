@@ -1,5 +1,5 @@
 // The outputs of fnet-simd beyond CSV: frames published on DDS (fnet_RunInfo, fnet_ForceFrame)
-// and the HDF5 run file. Both translate the engine's snapshot into the shared RunFrame.
+// and the HDF5 run file. Both take the shared RunFrame, which run_frame() makes once per snapshot.
 #pragma once
 
 #include <dds/dds.h>
@@ -23,7 +23,7 @@ RunFrame run_frame(const FrameSnapshot& snapshot);
 class DdsSink {
  public:
   DdsSink(dds_domainid_t domain, const RunInfo& info);
-  void operator()(const FrameSnapshot& snapshot);
+  void operator()(const RunFrame& frame);
   // At the end of a run: waits (bounded) until every matched reader has every frame, then keeps
   // serving late readers from the durability history for `linger` seconds.
   // Stops lingering early once should_stop() is true.
@@ -38,7 +38,7 @@ class DdsSink {
 class RunFileSink {
  public:
   RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame);
-  void operator()(const FrameSnapshot& snapshot);
+  void operator()(const RunFrame& frame);
 
  private:
   std::unique_ptr<RunFileWriter> writer_;

@@ -5,13 +5,13 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <map>
 #include <random>
 #include <thread>
 
 #include "common/frame_transport.hpp"
 #include "fnet.h"
+#include "tests/support/run_frame_compare.hpp"
 
 namespace fnet {
 namespace {
@@ -34,24 +34,7 @@ RunInfo make_info(const std::string& run) {
   return {run, 2000, 0.4, 0.5, 4000, 0.5, 0.8, 2.5e-5, 7.19377e-4, 0.9, 5, 42, R"({"particles":2000})"};
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-void expect_bit_exact(const RunFrame& want, const RunFrame& got) {
-  EXPECT_EQ(want.header, got.header);
-  EXPECT_EQ(want.frame.label, got.frame.label);
-  ASSERT_EQ(want.frame.particle_count, got.frame.particle_count);
-  ASSERT_EQ(want.frame.particles.size(), got.frame.particles.size());
-  for (std::size_t k = 0; k < want.frame.particles.size(); ++k) {
-    const auto &a = want.frame.particles[k], &b = got.frame.particles[k];
-    ASSERT_TRUE(same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.r, b.r)) << "particle " << k;
-  }
-  ASSERT_EQ(want.frame.contacts.size(), got.frame.contacts.size());
-  for (std::size_t k = 0; k < want.frame.contacts.size(); ++k) {
-    const auto &a = want.frame.contacts[k], &b = got.frame.contacts[k];
-    ASSERT_TRUE(a.i == b.i && a.j == b.j && same_bits(a.fn, b.fn) && same_bits(a.ft, b.ft)) << "contact " << k;
-  }
-  EXPECT_EQ(want.wall_contacts, got.wall_contacts);
-}
+using testing::expect_bit_exact;
 
 // Runs `publish` in a child process (forked before this process creates any DDS entity); the parent's pipe end reads one byte when it has finished
 // writing. The child then waits for `release` (a byte from the parent) so that late joiners can

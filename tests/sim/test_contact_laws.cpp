@@ -6,6 +6,7 @@
 
 #include "server/sim/protocol.hpp"
 #include "server/sim/simulation.hpp"
+#include "tests/sim/elastic_gas.hpp"
 
 namespace fnet::sim {
 namespace {
@@ -108,21 +109,11 @@ TEST(ContactLaws, MomentumConservedAndSpringTangent) {
 
 // Elastic (e_n = 1) frictionless gas: kinetic + elastic energy is conserved up to a bounded drift.
 TEST(ContactLaws, ElasticFrictionlessGasConservesEnergy) {
-  Params p;
-  p.particles = 400;
-  p.box = 30;
-  p.en = 1;
-  p.mu = 0;
-  p.initial_speed = 0.3;
-  p.seed = 11;
+  const Params p = scenes::elastic_gas();
   Simulation s = make_lattice(p);
   const double e0 = kinetic_energy(s) + elastic_energy(s);
-  double worst = 0;
   const int steps = 50000;
-  for (int k = 0; k < steps; ++k) {
-    step(s);
-    if (k % 10 == 0) worst = std::max(worst, std::abs(kinetic_energy(s) + elastic_energy(s) - e0) / e0);
-  }
+  const double worst = scenes::worst_energy_drift(s, steps);
   const double end = (kinetic_energy(s) + elastic_energy(s) - e0) / e0;
   std::printf("elastic gas, %d steps (%.0f tau_c): relative energy drift at end %.3g, worst %.3g\n", steps,
               steps / p.dt_divisor, end, worst);

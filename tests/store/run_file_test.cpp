@@ -10,6 +10,7 @@
 #include <random>
 
 #include "common/run_file.hpp"
+#include "tests/support/run_frame_compare.hpp"
 #include "tests/unit/temp_dir.hpp"
 
 namespace fnet {
@@ -35,24 +36,7 @@ RunFrame frame(const std::string& run, std::uint32_t index, std::size_t contacts
   return f;
 }
 
-void expect_same(const RunFrame& a, const RunFrame& b) {
-  EXPECT_EQ(a.header, b.header);
-  EXPECT_EQ(a.frame.label, b.frame.label);
-  EXPECT_EQ(a.frame.particle_count, b.frame.particle_count);
-  ASSERT_EQ(a.frame.particles.size(), b.frame.particles.size());
-  for (std::size_t k = 0; k < a.frame.particles.size(); ++k) {
-    EXPECT_EQ(a.frame.particles[k].x, b.frame.particles[k].x);
-    EXPECT_EQ(a.frame.particles[k].r, b.frame.particles[k].r);
-  }
-  ASSERT_EQ(a.frame.contacts.size(), b.frame.contacts.size());
-  for (std::size_t k = 0; k < a.frame.contacts.size(); ++k) {
-    EXPECT_EQ(a.frame.contacts[k].i, b.frame.contacts[k].i);
-    EXPECT_EQ(a.frame.contacts[k].j, b.frame.contacts[k].j);
-    EXPECT_EQ(a.frame.contacts[k].fn, b.frame.contacts[k].fn);
-    EXPECT_EQ(a.frame.contacts[k].ft, b.frame.contacts[k].ft);
-  }
-  EXPECT_EQ(a.wall_contacts, b.wall_contacts);
-}
+using testing::expect_bit_exact;
 
 TEST(RunFile, RoundTripIncludingAnEmptyFrame) {
   testing::TempDir dir;
@@ -64,7 +48,7 @@ TEST(RunFile, RoundTripIncludingAnEmptyFrame) {
   const RunFileContents got = read_run_file(file);
   EXPECT_EQ(got.info, info("r1"));
   ASSERT_EQ(got.frames.size(), 5u);
-  for (std::uint32_t k = 0; k < 5; ++k) expect_same(frame("r1", k, k == 2 ? 0 : 50 * k + 10), got.frames[k]);
+  for (std::uint32_t k = 0; k < 5; ++k) expect_bit_exact(frame("r1", k, k == 2 ? 0 : 50 * k + 10), got.frames[k]);
 }
 
 TEST(RunFile, ReadableWithH5py) {
@@ -105,7 +89,7 @@ TEST(RunFile, ReopenDropsFramesFromTheResumePointOn) {
   }
   const RunFileContents got = read_run_file(file);
   ASSERT_EQ(got.frames.size(), 5u);
-  expect_same(frame("r2", 4, 33), got.frames[4]);
+  expect_bit_exact(frame("r2", 4, 33), got.frames[4]);
 }
 
 TEST(RunFile, KilledWriterLeavesEveryFlushedFrameReadable) {
@@ -132,7 +116,7 @@ TEST(RunFile, KilledWriterLeavesEveryFlushedFrameReadable) {
   close(done[0]);
   const RunFileContents got = read_run_file(file);
   ASSERT_GE(got.frames.size(), reported);
-  for (std::uint32_t k = 0; k < reported; ++k) expect_same(frame("killed", k, 2000), got.frames[k]);
+  for (std::uint32_t k = 0; k < reported; ++k) expect_bit_exact(frame("killed", k, 2000), got.frames[k]);
 }
 
 TEST(RunFile, ErrorsNameTheFile) {

@@ -15,6 +15,7 @@
 
 #include "server/sim/protocol.hpp"
 #include "server/sim/simulation.hpp"
+#include "tests/sim/elastic_gas.hpp"
 
 using namespace fnet::sim;
 using Clock = std::chrono::steady_clock;
@@ -54,24 +55,8 @@ RestitutionError restitution_error(Integrator integrator, double divisor) {
 }
 
 double energy_drift(Integrator integrator, double divisor) {
-  Params p;
-  p.particles = 400;
-  p.box = 30;
-  p.en = 1;
-  p.mu = 0;
-  p.initial_speed = 0.3;
-  p.seed = 11;
-  p.integrator = integrator;
-  p.dt_divisor = divisor;
-  Simulation s = make_lattice(p);
-  const double e0 = kinetic_energy(s) + elastic_energy(s);
-  double worst = 0;
-  const auto steps = static_cast<int>(200 * divisor);
-  for (int k = 0; k < steps; ++k) {
-    step(s);
-    if (k % 10 == 0) worst = std::max(worst, std::abs(kinetic_energy(s) + elastic_energy(s) - e0) / e0);
-  }
-  return worst;
+  Simulation s = make_lattice(scenes::elastic_gas(integrator, divisor));
+  return scenes::worst_energy_drift(s, static_cast<int>(200 * divisor));
 }
 
 // A 2000-grain packing compressed to ρ = 0.80 (near jamming), then timed while compressing on.
