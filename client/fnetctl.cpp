@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "client/rpc_client.hpp"
+#include "proto/json_rpc.hpp"
 
 namespace po = boost::program_options;
 using fnet::client::json;
@@ -391,8 +392,8 @@ int main(int argc, char** argv) {
     return kUnreachable;
   } catch (const fnet::client::CallError& e) {
     std::cerr << "fnetctl " << command << ": " << e.what() << "\n";
-    if (e.code() == -32001 || e.code() == -32002) return kUnknown;
-    if (e.code() == -32602) return kUsage;
+    if (e.code() == fnet::rpc::kUnknownRun || e.code() == fnet::rpc::kUnknownFrame) return kUnknown;
+    if (e.code() == fnet::rpc::kInvalidParams) return kUsage;
     return kServerError;
   } catch (const std::exception& e) {
     std::cerr << "fnetctl " << command << ": " << e.what() << "\n";

@@ -26,18 +26,17 @@ const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim) 
 
 DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric, EssentialConvention essential) {
   switch (metric) {
-    case Metric::bottleneck: return bottleneck_distance(a, b, {essential, 0});
+    case Metric::bottleneck: return diagram_distance_q(a, b, 0, essential);
     case Metric::wasserstein1: return diagram_distance_q(a, b, 1, essential);
     case Metric::wasserstein2: return diagram_distance_q(a, b, 2, essential);
   }
   return {};
 }
 
-DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q, EssentialConvention essential) {
-  WassersteinParams params;
-  params.q = q;
-  params.essential = essential;
-  return wasserstein_distance(a, b, params);
+DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q, EssentialConvention essential,
+                                  double delta) {
+  if (q == 0) return bottleneck_distance(a, b, {essential, delta});
+  return wasserstein_distance(a, b, {.q = q, .essential = essential, .delta = delta});
 }
 
 StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current, EssentialConvention essential) {

@@ -30,11 +30,12 @@ FrameDiagramSet analyze_frame(const Frame& frame);
 
 const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim);
 
-// Distance between two diagrams by metric name; q is used by `wasserstein` (general q) only.
+// Distance between two diagrams by metric name, or by exponent: q >= 1 the Wasserstein distance,
+// q == 0 the bottleneck (q = infinity). delta: the accepted relative error (0: exact).
 DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric,
                                 EssentialConvention essential = EssentialConvention::floor);
 DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q,
-                                  EssentialConvention essential = EssentialConvention::floor);
+                                  EssentialConvention essential = EssentialConvention::floor, double delta = 0);
 
 // The twelve exact distances between consecutive frames, indexed by step_index().
 struct StepDistances {

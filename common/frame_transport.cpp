@@ -221,10 +221,4 @@ Received FrameSubscriber::take(dds_duration_t timeout, std::size_t max_frames) {
   return out;
 }
 
-std::uint32_t FrameSubscriber::matched_frame_writers() const {
-  dds_subscription_matched_status_t status{};
-  check(dds_get_subscription_matched_status(frame_reader_, &status), "dds_get_subscription_matched_status");
-  return status.current_count;
-}
-
 }  // namespace fnet::dds

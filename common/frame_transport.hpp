@@ -50,7 +50,6 @@ class FrameSubscriber {
 
   // Waits up to `timeout` for data, then takes everything available (at most max_frames frames).
   Received take(dds_duration_t timeout, std::size_t max_frames = SIZE_MAX);
-  std::uint32_t matched_frame_writers() const;
 
  private:
   Entity participant_;

@@ -52,7 +52,6 @@ void quiet() {
 void write_attribute(hid_t obj, const char* name, double v) { write_scalar(obj, name, H5T_NATIVE_DOUBLE, &v); }
 void write_attribute(hid_t obj, const char* name, std::uint32_t v) { write_scalar(obj, name, H5T_NATIVE_UINT32, &v); }
 void write_attribute(hid_t obj, const char* name, std::uint64_t v) { write_scalar(obj, name, H5T_NATIVE_UINT64, &v); }
-void write_attribute(hid_t obj, const char* name, std::int64_t v) { write_scalar(obj, name, H5T_NATIVE_INT64, &v); }
 
 // Variable-length UTF-8, which h5py reads as str (fixed-length strings come back as bytes).
 void write_attribute(hid_t obj, const char* name, const std::string& v) {
@@ -71,9 +70,6 @@ std::uint32_t read_uint32(hid_t obj, const char* name, const std::string& where)
 }
 std::uint64_t read_uint64(hid_t obj, const char* name, const std::string& where) {
   return read_scalar<std::uint64_t>(obj, name, H5T_NATIVE_UINT64, where);
-}
-std::int64_t read_int64(hid_t obj, const char* name, const std::string& where) {
-  return read_scalar<std::int64_t>(obj, name, H5T_NATIVE_INT64, where);
 }
 
 std::string read_string(hid_t obj, const char* name, const std::string& where) {

@@ -16,13 +16,11 @@ void quiet();
 void write_attribute(hid_t obj, const char* name, double v);
 void write_attribute(hid_t obj, const char* name, std::uint32_t v);
 void write_attribute(hid_t obj, const char* name, std::uint64_t v);
-void write_attribute(hid_t obj, const char* name, std::int64_t v);
 void write_attribute(hid_t obj, const char* name, const std::string& v);  // variable-length UTF-8
 
 double read_double(hid_t obj, const char* name, const std::string& where);
 std::uint32_t read_uint32(hid_t obj, const char* name, const std::string& where);
 std::uint64_t read_uint64(hid_t obj, const char* name, const std::string& where);
-std::int64_t read_int64(hid_t obj, const char* name, const std::string& where);
 std::string read_string(hid_t obj, const char* name, const std::string& where);
 
 // rows x cols (cols == 0: a 1-D array of rows); zero rows are allowed.

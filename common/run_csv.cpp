@@ -15,8 +15,13 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
   std::string line;
   std::getline(in, line);
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  std::vector<std::string> header;
-  for (std::stringstream s(line); std::getline(s, line, ',');) header.push_back(line);
+  const auto split = [](const std::string& row) {
+    std::vector<std::string> cells;
+    std::string cell;
+    for (std::stringstream s(row); std::getline(s, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> header = split(line);
   const auto column = [&](const std::string& name, bool required) -> int {
     for (std::size_t k = 0; k < header.size(); ++k)
       if (header[k] == name) return static_cast<int>(k);
@@ -31,8 +36,7 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
-    std::vector<std::string> cells;
-    for (std::stringstream s(line); std::getline(s, line, ',');) cells.push_back(line);
+    const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size())
       throw CsvError(index.string() + ":" + std::to_string(line_no) + ": expected " + std::to_string(header.size()) + " fields");
     RunFrame f;

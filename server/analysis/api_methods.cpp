@@ -9,8 +9,6 @@
 #include "common/distance_json.hpp"
 #include "common/frame_analysis.hpp"
 #include "common/run_info_json.hpp"
-#include "common/wasserstein.hpp"
-#include "common/bottleneck.hpp"
 
 namespace fnet::server {
 namespace {
@@ -106,14 +104,6 @@ MetricSpec get_metric(const json& params) {
   return m;
 }
 
-DistanceResult compute(const Diagram& a, const Diagram& b, const MetricSpec& m, EssentialConvention essential, double delta) {
-  if (m.q == 0) return bottleneck_distance(a, b, {essential, delta});
-  WassersteinParams p;
-  p.q = m.q;
-  p.essential = essential;
-  p.delta = delta;
-  return wasserstein_distance(a, b, p);
-}
 
 json describe(const MetricSpec& m, int dim, ForceKind force, EssentialConvention essential) {
   json out = {{"metric", m.name}, {"dim", dim}, {"force", to_string(force)}, {"essential", to_string(essential)}};
@@ -130,7 +120,7 @@ std::string resolve_run(const Registry& registry, const json& params, const char
     if (run.empty()) throw Error(rpc::kUnknownRun, "the server has no runs yet");
     return run;
   }
-  if (!registry.run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
+  if (!registry.has_run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
   return run;
 }
 
@@ -201,8 +191,8 @@ json series_get(const Registry& registry, const json& params) {
       infinite.push_back(false);
       continue;
     }
-    const DistanceResult r = compute(diagram_of(prev_frame->diagrams, force, dim), diagram_of(f->diagrams, force, dim), metric,
-                                     essential, 0);
+    const DistanceResult r = diagram_distance_q(diagram_of(prev_frame->diagrams, force, dim), diagram_of(f->diagrams, force, dim),
+                                                metric.q, essential);
     value.push_back(r.infinite ? json(nullptr) : json(r.value));
     infinite.push_back(r.infinite);
     any_infinite |= r.infinite;
@@ -244,7 +234,7 @@ json distance_get(const Registry& registry, const json& params) {
   if (!a) throw Error(rpc::kUnknownFrame, "run '" + run_a + "' has no analyzed frame " + std::to_string(frame_a));
   if (!b) throw Error(rpc::kUnknownFrame, "run '" + run_b + "' has no analyzed frame " + std::to_string(frame_b));
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = compute(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim), metric, essential, delta);
+  const DistanceResult r = diagram_distance_q(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim), metric.q, essential, delta);
   json out = to_json(r);
   out.update(describe(metric, dim, force, essential));
   out["run"] = run_a;
@@ -311,7 +301,7 @@ rpc::Handler make_api(ApiContext& ctx) {
     if (method == "server.status") return server_status(ctx);
     if (method == "series.subscribe") {
       const std::string run = get_string(params, "run", std::string());
-      if (!run.empty() && !registry.run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'");
+      if (!run.empty() && !registry.has_run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'");
       const auto since = get_index(params, "since");
       std::shared_ptr<SessionSubscriptions> mine;
       {

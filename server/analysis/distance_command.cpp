@@ -8,11 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "common/bottleneck.hpp"
 #include "common/diagram_json.hpp"
 #include "common/distance_json.hpp"
 #include "common/essential_convention.hpp"
-#include "common/wasserstein.hpp"
+#include "common/frame_analysis.hpp"
 #include "server/analysis/commands.hpp"
 
 namespace po = boost::program_options;
@@ -94,12 +93,7 @@ int distance_command(const std::vector<std::string>& args) {
 
   const Diagram a = read_diagram(files[0], dim), b = read_diagram(files[1], dim);
   const auto start = std::chrono::steady_clock::now();
-  DistanceResult result;
-  if (metric == "bottleneck") {
-    result = bottleneck_distance(a, b, {.essential = convention, .relative_error = delta});
-  } else {
-    result = wasserstein_distance(a, b, {.q = q, .essential = convention, .delta = delta});
-  }
+  const DistanceResult result = diagram_distance_q(a, b, metric == "bottleneck" ? 0 : q, convention, delta);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json out = to_json(result);
   out["metric"] = metric;

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "server/analysis/json_rpc.hpp"
+#include "proto/json_rpc.hpp"
 
 namespace fnet::rpc {
 
@@ -43,7 +43,6 @@ class Session : public std::enable_shared_from_this<Session> {
   // Queues one JSON message for this client; thread-safe. Drops the client when its unread
   // output exceeds the limit. Returns false once the session is closed.
   bool send(const json& message);
-  bool closed() const { return closed_; }
   std::uint64_t id() const { return id_; }
   // Called once when the session ends (to release subscriptions).
   void on_close(std::function<void()> fn);

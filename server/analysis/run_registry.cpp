@@ -54,6 +54,12 @@ Registry::Run& Registry::run_locked(const std::string& run_id) {
   return run;
 }
 
+void Registry::note_rejection_locked(std::string reason) {
+  // The most recent reasons_kept reasons, whatever their source.
+  recent_rejections_.push_back(std::move(reason));
+  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+}
+
 void Registry::store_error_locked(Run& run, const std::exception& e) {
   // The analysis goes on in memory; the store stays as it was up to the failure.
   std::cerr << "fnet-server: store of run " << run.run_id << ": " << e.what() << "\n";
@@ -63,7 +69,7 @@ void Registry::on_info(const RunInfo& info) {
   std::lock_guard lock(mutex_);
   if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
     ++counters_.malformed;
-    recent_rejections_.push_back("run announcement rejected: " + problem);
+    note_rejection_locked("run announcement rejected: " + problem);
     return;
   }
   Run& run = run_locked(info.run_id);
@@ -80,8 +86,7 @@ void Registry::on_info(const RunInfo& info) {
 void Registry::on_malformed(const std::string& reason) {
   std::lock_guard lock(mutex_);
   ++counters_.malformed;
-  recent_rejections_.push_back(reason);
-  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+  note_rejection_locked(reason);
 }
 
 void Registry::on_frame(RunFrame frame) {
@@ -89,7 +94,7 @@ void Registry::on_frame(RunFrame frame) {
   ++counters_.received;
   if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
     ++counters_.malformed;
-    recent_rejections_.push_back(frame.frame.label + ": rejected: " + problem);
+    note_rejection_locked(frame.frame.label + ": rejected: " + problem);
     return;
   }
   Run& run = run_locked(frame.header.run_id);
@@ -216,8 +221,7 @@ void Registry::reject_locked(Run& run, std::uint32_t index, const std::string& r
   const RejectedFrame rejected{index, reason};
   run.rejected.push_back(rejected);
   ++counters_.rejected;
-  recent_rejections_.push_back(reason);
-  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+  note_rejection_locked(reason);
   std::cerr << "fnet-server: rejected " << reason << "\n";
   if (run.store) try {
       run.store->append(rejected);
@@ -239,8 +243,8 @@ void Registry::check_gaps() {
     const std::uint32_t skipped = first->first - run.frontier;
     run.skipped += skipped;
     counters_.skipped += skipped;
-    recent_rejections_.push_back("run " + id + ": frames " + std::to_string(run.frontier) + ".." +
-                                 std::to_string(first->first - 1) + " never arrived; skipped after the gap timeout");
+    note_rejection_locked("run " + id + ": frames " + std::to_string(run.frontier) + ".." +
+                          std::to_string(first->first - 1) + " never arrived; skipped after the gap timeout");
     run.frontier = first->first;
     advance_locked(run);
   }
@@ -251,36 +255,43 @@ std::size_t Registry::in_flight() const {
   return in_flight_;
 }
 
+RunSummary Registry::summary_locked(const std::string& id, const Run& run) const {
+  RunSummary s;
+  s.run_id = id;
+  s.has_info = run.has_info;
+  s.info = run.info;
+  s.frames = run.committed.size();
+  s.rejected = run.rejected.size();
+  s.pending = run.pending.size();
+  s.duplicates = run.duplicates;
+  s.skipped = run.skipped;
+  if (!run.committed.empty()) {
+    s.first_frame = run.committed.begin()->first;
+    s.last_frame = run.committed.rbegin()->first;
+    s.last_rho = run.committed.rbegin()->second->header.rho;
+    s.last_z = run.committed.rbegin()->second->header.z;
+  }
+  s.seconds_since_last_frame = std::chrono::duration<double>(Clock::now() - run.last_frame_at).count();
+  return s;
+}
+
 std::vector<RunSummary> Registry::runs() const {
   std::vector<RunSummary> out;
   std::lock_guard lock(mutex_);
-  for (const auto& [id, run] : runs_) {
-    RunSummary s;
-    s.run_id = id;
-    s.has_info = run.has_info;
-    s.info = run.info;
-    s.frames = run.committed.size();
-    s.rejected = run.rejected.size();
-    s.pending = run.pending.size();
-    s.duplicates = run.duplicates;
-    s.skipped = run.skipped;
-    if (!run.committed.empty()) {
-      s.first_frame = run.committed.begin()->first;
-      s.last_frame = run.committed.rbegin()->first;
-      s.first_rho = run.committed.begin()->second->header.rho;
-      s.last_rho = run.committed.rbegin()->second->header.rho;
-      s.last_z = run.committed.rbegin()->second->header.z;
-    }
-    s.seconds_since_last_frame = std::chrono::duration<double>(Clock::now() - run.last_frame_at).count();
-    out.push_back(std::move(s));
-  }
+  for (const auto& [id, run] : runs_) out.push_back(summary_locked(id, run));
   return out;
 }
 
 std::optional<RunSummary> Registry::run(const std::string& run_id) const {
-  for (RunSummary& s : runs())
-    if (s.run_id == run_id) return std::move(s);
-  return std::nullopt;
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return std::nullopt;
+  return summary_locked(it->first, it->second);
+}
+
+bool Registry::has_run(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  return runs_.count(run_id) != 0;
 }
 
 std::vector<RejectedFrame> Registry::rejected(const std::string& run_id) const {

@@ -44,7 +44,7 @@ struct RunSummary {
   RunInfo info;
   std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
   std::optional<std::uint32_t> first_frame, last_frame;
-  double first_rho = 0, last_rho = 0, last_z = 0;
+  double last_rho = 0, last_z = 0;
   double seconds_since_last_frame = 0;
 };
 
@@ -75,6 +75,7 @@ class Registry {
 
   std::vector<RunSummary> runs() const;
   std::optional<RunSummary> run(const std::string& run_id) const;
+  bool has_run(const std::string& run_id) const;
   std::vector<RejectedFrame> rejected(const std::string& run_id) const;
   // Committed frames of a run in index order (copies; diagrams shared).
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
@@ -130,6 +131,8 @@ class Registry {
   void commit_locked(Run& run);
   void reject_locked(Run& run, std::uint32_t index, const std::string& reason);
   void store_error_locked(Run& run, const std::exception& e);
+  void note_rejection_locked(std::string reason);
+  RunSummary summary_locked(const std::string& id, const Run& run) const;
 
   const std::filesystem::path data_dir_;
   boost::asio::thread_pool& pool_;

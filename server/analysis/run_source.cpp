@@ -23,20 +23,20 @@ std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
     RunFileContents contents = read_run_file(run_file);
     info = std::move(contents.info);
     frames = std::move(contents.frames);
+    if (!run_id.empty()) {  // relabel the file's run
+      info.run_id = run_id;
+      for (RunFrame& f : frames) {
+        f.header.run_id = run_id;
+        f.frame.label = frame_label(run_id, f.header.index);
+      }
+    }
   } else {
     if (run_id.empty()) throw po::error("--csv-dir needs --run-id");
-    frames = read_csv_run(csv_dir, run_id);
+    frames = read_csv_run(csv_dir, run_id);  // labelled with run_id already
     info.run_id = run_id;
     info.frames = static_cast<std::uint32_t>(frames.size());
     info.config_json = "{}";
     if (!frames.empty()) info.particles = static_cast<std::uint32_t>(frames.front().frame.particle_count);
-  }
-  if (!run_id.empty()) {
-    info.run_id = run_id;
-    for (RunFrame& f : frames) {
-      f.header.run_id = run_id;
-      f.frame.label = frame_label(run_id, f.header.index);
-    }
   }
   if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) throw po::error(problem);
   return {std::move(info), std::move(frames)};

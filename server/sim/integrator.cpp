@@ -103,8 +103,8 @@ void gear_correct_range(Simulation& s, std::size_t b, std::size_t e) {
               s.torque.data() + b, s.inv_mass.data() + b, s.inv_inertia.data() + b, h, e - b);
 }
 
-// A team splits the grains in equal shares: each thread then predicts and corrects the grains
-// whose arrays it touched last.
+// A team splits the grains in equal shares (the corrector runs with the force sum,
+// compute_forces' `then`).
 bool gear_predict(Simulation& s, double limit2, Workers* workers) {
   if (!workers || workers->size() == 1) return gear_predict_range(s, limit2, 0, s.n);
   const unsigned parts = workers->size();
@@ -116,11 +116,7 @@ bool gear_predict(Simulation& s, double limit2, Workers* workers) {
   return moved.load();
 }
 
-void gear_correct(Simulation& s, Workers* workers) {
-  if (!workers || workers->size() == 1) return gear_correct_range(s, 0, s.n);
-  const unsigned parts = workers->size();
-  workers->run([&](unsigned part) { gear_correct_range(s, share_begin(s.n, part, parts), share_begin(s.n, part + 1, parts)); });
-}
+
 
 // Half kick: the scaled velocity v Δt gains a Δt²/2.
 void verlet_second_half(Simulation& s) {

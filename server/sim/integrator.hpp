@@ -17,11 +17,11 @@ namespace fnet::sim {
 struct Simulation;
 class Workers;
 
-// Each returns whether a grain has moved farther than √limit2 since the last list build. The Gear
-// steps split the grains over a team when given one (element-wise: the same bits).
+// The predictors return whether a grain has moved farther than √limit2 since the last list
+// build. gear_predict splits the grains over a team when given one (element-wise: the same bits).
 bool gear_predict(Simulation& s, double limit2, Workers* workers = nullptr);
-void gear_correct(Simulation& s, Workers* workers = nullptr);
-// The corrector of grains [begin, end) only (element-wise), for a loop that fuses it with another.
+// The corrector of grains [begin, end) (element-wise), run by compute_forces as each thread's
+// grains get their forces.
 void gear_correct_range(Simulation& s, std::size_t begin, std::size_t end);
 bool verlet_first_half(Simulation& s, double limit2);
 void verlet_second_half(Simulation& s);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/frame_csv.hpp"
+#include "common/run_csv.hpp"
 #include "tests/unit/temp_dir.hpp"
 
 namespace fnet {
@@ -105,6 +106,14 @@ TEST(FrameCsv, NonNumericFieldNamesFileLineColumnAndText) {
   EXPECT_THAT(csv_error([&] { read_particles_csv(empty_field); }), AllOf(HasSubstr(at(empty_field, 2)), HasSubstr("'y'")));
   const auto trailing = dir.write("p2.csv", "id,x,y,r\n0,1,2,0.5x\n");
   EXPECT_THAT(csv_error([&] { read_particles_csv(trailing); }), AllOf(HasSubstr(at(trailing, 2)), HasSubstr("'r'")));
+}
+
+// An exported run folder whose index has a non-numeric field: the message quotes the whole row.
+TEST(RunCsv, BadIndexRowIsQuotedWhole) {
+  TempDir dir;
+  const auto index = dir.write("index.csv", "frame,step,time,rho,Z\n0,12,abc,0.5,4\n");
+  EXPECT_THAT(csv_error([&] { read_csv_run(dir.path(), "r"); }),
+              AllOf(HasSubstr(at(index, 2)), HasSubstr("'0,12,abc,0.5,4'")));
 }
 
 // A '+' may lead a number; a second sign after it does not make one.
