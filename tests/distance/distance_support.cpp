@@ -149,20 +149,10 @@ bool oracle_available() {
   return std::system(cmd.c_str()) == 0;
 }
 
-TempDir::TempDir() {
-  std::random_device rd;
-  path = std::filesystem::temp_directory_path() / ("fnet-distance-" + std::to_string(rd()) + std::to_string(rd()));
-  std::filesystem::create_directories(path);
-}
-TempDir::~TempDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path, ec);
-}
-
 std::vector<double> oracle_distances(const Diagram& a, const Diagram& b, EssentialConvention convention,
                                      const std::vector<std::string>& metrics) {
   TempDir dir;
-  const auto fa = dir.path / "a.json", fb = dir.path / "b.json";
+  const auto fa = dir.path() / "a.json", fb = dir.path() / "b.json";
   std::ofstream(fa) << nlohmann::json{{"pd1", to_json(a)}}.dump();
   std::ofstream(fb) << nlohmann::json{{"pd1", to_json(b)}}.dump();
   std::string cmd = std::string(FNET_ORACLE_PYTHON) + " " + FNET_DISTANCE_ORACLE + " " + fa.string() + " " +

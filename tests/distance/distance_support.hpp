@@ -9,6 +9,7 @@
 
 #include "common/diagram.hpp"
 #include "common/essential_convention.hpp"
+#include "tests/unit/temp_dir.hpp"
 
 namespace fnet::test {
 
@@ -48,11 +49,6 @@ struct Certificate {
 };
 Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q);
 
-// A fresh directory under the system temp dir, removed by the destructor.
-struct TempDir {
-  TempDir();
-  ~TempDir();
-  std::filesystem::path path;
-};
+using fnet::testing::TempDir;  // tests/unit/temp_dir.hpp
 
 }  // namespace fnet::test

@@ -40,7 +40,7 @@ TEST(DistanceLarge, FiftyThousandPointsPerDiagram) {
   EXPECT_TRUE(cert.matching_valid);
   EXPECT_LE(cert.primal - cert.dual, 1e-11 * cert.primal) << "matching " << cert.primal << ", dual " << cert.dual;
   EXPECT_LE(cert.dual - cert.primal, 1e-11 * cert.primal);
-  EXPECT_NEAR(cert.primal, w1, 1e-9 * w1);
+  EXPECT_NEAR(cert.primal, w1, 1e-12 * w1);
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ void compare_with_oracle(const Diagram& a, const Diagram& b, EssentialConvention
       EXPECT_TRUE(r.infinite) << what;
       continue;
     }
-    EXPECT_TRUE(close(r.value, expected[k], 1e-9)) << what << " " << label(q[k], c) << ": fnet " << r.value
+    EXPECT_TRUE(close(r.value, expected[k], 1e-12)) << what << " " << label(q[k], c) << ": fnet " << r.value
                                                    << " oracle " << expected[k];
   }
 }
@@ -78,7 +78,7 @@ std::string run(const std::string& cmd, int& status) {
 
 TEST(DistanceCli, PrintsValueBoundsAndInfinity) {
   TempDir dir;
-  const auto fa = dir.path / "a.json", fb = dir.path / "b.json";
+  const auto fa = dir.path() / "a.json", fb = dir.path() / "b.json";
   Diagram g = {{3, -1}};
   for (int k = 0; k < 7; ++k) g.push_back({1, 0});
   std::ofstream(fa) << nlohmann::json{{"pd0", to_json(Diagram{{5, -1}})}, {"pd1", to_json(Diagram{{5, -1}})}}.dump();

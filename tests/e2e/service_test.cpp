@@ -176,13 +176,16 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
   {
     Server first = start_server(tmp.path() / "data", 33, tmp.path() / "server1.log");
     RpcClient rpc("127.0.0.1", first.port);
-    for (int k = 0; k < 600; ++k) {  // kill it mid-run, once some frames are stored
+    int stored_at_kill = 0;
+    for (int k = 0; k < 600 && stored_at_kill < 2; ++k) {  // kill it mid-run, once some frames are stored
       const json runs = rpc.call("runs.list")["runs"];
-      if (!runs.empty() && runs[0]["frames"].get<int>() >= 2) break;
-      std::this_thread::sleep_for(50ms);
+      if (!runs.empty()) stored_at_kill = runs[0]["frames"].get<int>();
+      if (stored_at_kill < 2) std::this_thread::sleep_for(50ms);
     }
     first.process->signal(SIGKILL);
     first.process->wait(10s);
+    ASSERT_GE(stored_at_kill, 2);
+    EXPECT_LT(stored_at_kill, 6) << "the kill came after the whole run: the restart recovers nothing";
   }
   Server second = start_server(tmp.path() / "data", 33, tmp.path() / "server2.log");
   const json run = wait_for_frames(second.port, "crash", 6);

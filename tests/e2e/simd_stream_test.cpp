@@ -3,7 +3,6 @@
 // that run equals the offline analysis of the run file.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <regex>
 #include <thread>
 
@@ -12,6 +11,7 @@
 #include "common/frame_transport.hpp"
 #include "common/run_file.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/support/run_frame_compare.hpp"
 #include "tests/unit/temp_dir.hpp"
 
 namespace fnet::e2e {
@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using testing::expect_bit_exact;
 
 // A short, fast compression: 150 disks at 40x the paper's wall speed, 8 frames.
 std::vector<std::string> small_run(const std::string& run_id, int domain, const fs::path& out) {
@@ -62,18 +62,8 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
   EXPECT_EQ(file.info, infos[0]);
   ASSERT_EQ(file.frames.size(), 8u);
   for (std::size_t k = 0; k < 8; ++k) {
-    const RunFrame &a = file.frames[k], &b = got[k];
-    EXPECT_EQ(a.header, b.header);
-    ASSERT_EQ(a.frame.particles.size(), b.frame.particles.size());
-    for (std::size_t p = 0; p < a.frame.particles.size(); ++p)
-      ASSERT_TRUE(same_bits(a.frame.particles[p].x, b.frame.particles[p].x) && same_bits(a.frame.particles[p].y, b.frame.particles[p].y) &&
-                  same_bits(a.frame.particles[p].r, b.frame.particles[p].r));
-    ASSERT_EQ(a.frame.contacts.size(), b.frame.contacts.size());
-    for (std::size_t c = 0; c < a.frame.contacts.size(); ++c)
-      ASSERT_TRUE(a.frame.contacts[c].i == b.frame.contacts[c].i && a.frame.contacts[c].j == b.frame.contacts[c].j &&
-                  same_bits(a.frame.contacts[c].fn, b.frame.contacts[c].fn) && same_bits(a.frame.contacts[c].ft, b.frame.contacts[c].ft));
-    EXPECT_EQ(a.wall_contacts, b.wall_contacts);
-    EXPECT_NO_THROW(validate(b.frame)) << "frame " << k;
+    expect_bit_exact(file.frames[k], got[k]);
+    EXPECT_NO_THROW(validate(got[k].frame)) << "frame " << k;
   }
   EXPECT_GT(got.back().header.rho, 0.89);  // the compression reached its end
   simd.stop();

@@ -12,7 +12,7 @@ import time
 simd, work = sys.argv[1], sys.argv[2]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-args = ["--particles", "400", "--box", "22.36", "--compression-speed", "5e-3", "--relax-energy", "1e-5",
+args = ["--particles", "400", "--box", "22.36", "--compression-speed", "5e-4", "--relax-energy", "1e-5",
         "--frames", "12", "--seed", "9", "--no-dds", "--quiet", "--checkpoint-interval", "0.2"]
 full, cut = os.path.join(work, "full"), os.path.join(work, "cut")
 
@@ -23,12 +23,19 @@ t0 = time.perf_counter()
 subprocess.run([simd, *args, "--export-csv", full], check=True)
 elapsed = time.perf_counter() - t0
 
+def frames_written():
+    return sum(1 for f in os.listdir(cut) if f.endswith("_particles.csv")) if os.path.isdir(cut) else 0
+
+
+# Killed mid-compression: once 4 of the 12 frames are out (a frame every ~0.15 s).
 proc = subprocess.Popen([simd, *args, "--export-csv", cut])
-time.sleep(max(0.6, elapsed / 2))
+while frames_written() < 4 and proc.poll() is None:
+    time.sleep(0.005)
 proc.send_signal(signal.SIGKILL)
 proc.wait()
-done = sum(1 for f in os.listdir(cut) if f.endswith("_particles.csv"))
+done = frames_written()
 print(f"uninterrupted run {elapsed:.1f} s; killed after {done} frames")
+assert 0 < done < 12, f"the kill must land mid-run, it came after {done} of 12 frames"
 subprocess.run([simd, "--resume", "--export-csv", cut, "--no-dds", "--quiet"], check=True)
 
 names = sorted(f for f in os.listdir(full) if f.endswith(".csv"))

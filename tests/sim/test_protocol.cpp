@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "server/sim/protocol.hpp"
 #include "server/sim/workers.hpp"
+#include "tests/support/run_frame_compare.hpp"
 
 namespace fnet::sim {
 namespace {
@@ -32,7 +32,7 @@ Params small(std::uint64_t seed = 5) {
   return p;
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using fnet::testing::same_bits;
 
 void expect_identical(const std::vector<FrameSnapshot>& a, const std::vector<FrameSnapshot>& b) {
   ASSERT_EQ(a.size(), b.size());
@@ -51,6 +51,12 @@ void expect_identical(const std::vector<FrameSnapshot>& a, const std::vector<Fra
       ASSERT_TRUE(p.i == q.i && p.j == q.j && same_bits(p.fn, q.fn) && same_bits(p.ft, q.ft)) << "frame " << k;
     }
     ASSERT_EQ(a[k].wall_contacts.size(), b[k].wall_contacts.size());
+    for (std::size_t w = 0; w < a[k].wall_contacts.size(); ++w) {
+      const auto &p = a[k].wall_contacts[w], &q = b[k].wall_contacts[w];
+      ASSERT_TRUE(p.grain == q.grain && p.wall_particle == q.wall_particle && p.side == q.side &&
+                  same_bits(p.fn, q.fn) && same_bits(p.ft, q.ft))
+          << "frame " << k << " wall contact " << w;
+    }
   }
 }
 
@@ -192,10 +198,15 @@ TEST(Protocol, CsvExportIsWhatTheAnalysisReads) {
     EXPECT_NO_THROW(fnet::validate(read));
     ASSERT_EQ(read.particle_count, p.particles);
     ASSERT_EQ(read.contacts.size(), f.frame.contacts.size());
-    for (std::size_t c = 0; c < read.contacts.size(); ++c)  // shortest round-trip formatting
-      EXPECT_TRUE(same_bits(read.contacts[c].fn, f.frame.contacts[c].fn));
-    for (std::size_t i = 0; i < read.particles.size(); ++i)
-      EXPECT_TRUE(same_bits(read.particles[i].x, f.frame.particles[i].x));
+    for (std::size_t c = 0; c < read.contacts.size(); ++c) {  // shortest round-trip formatting: every bit
+      const auto &r = read.contacts[c], &w = f.frame.contacts[c];
+      EXPECT_TRUE(r.i == w.i && r.j == w.j && same_bits(r.fn, w.fn) && same_bits(r.ft, w.ft)) << "contact " << c;
+    }
+    ASSERT_EQ(read.particles.size(), f.frame.particles.size());
+    for (std::size_t i = 0; i < read.particles.size(); ++i) {
+      const auto &r = read.particles[i], &w = f.frame.particles[i];
+      EXPECT_TRUE(same_bits(r.x, w.x) && same_bits(r.y, w.y) && same_bits(r.r, w.r)) << "particle " << i;
+    }
     EXPECT_TRUE(std::filesystem::exists(dir / (std::string(name) + "wall_contacts.csv")));
   }
   // A resumed export keeps the index rows of the frames already written.

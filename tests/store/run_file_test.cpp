@@ -114,6 +114,7 @@ TEST(RunFile, KilledWriterLeavesEveryFlushedFrameReadable) {
   waitpid(pid, nullptr, 0);
   while (read(done[0], &n, sizeof n) == sizeof n) reported = n;
   close(done[0]);
+  ASSERT_GE(reported, 7u) << "the writer died before it wrote 7 frames";
   const RunFileContents got = read_run_file(file);
   ASSERT_GE(got.frames.size(), reported);
   for (std::uint32_t k = 0; k < reported; ++k) expect_bit_exact(frame("killed", k, 2000), got.frames[k]);
