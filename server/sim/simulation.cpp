@@ -97,9 +97,9 @@ Simulation make_custom(const Params& p, std::span<const GrainInit> grains) {
 }
 
 void step(Simulation& s, Workers* team) {
-  // The team only pays once the list holds enough pairs per grain (measured on 2 cores, 2 000
-  // grains: 1.4x faster per step at rho = 0.80, 2.4 pairs per grain; 0.76x while a fresh lattice
-  // relaxes, 1.6 pairs per grain). Either way the bits are the same.
+  // The team is skipped on a sparse list (fewer than 2 listed pairs per grain, a relaxing
+  // lattice), where its synchronization costs more than the split saves; `fnet_sim_bench
+  // --threads` measures both sides. Either way the bits are the same.
   Workers* workers = s.list.partner.size() >= kTeamPairsPerGrain * s.n ? team : nullptr;
   const double half_skin = 0.5 * s.list.skin;
   const double limit2 = half_skin * half_skin;

@@ -3,7 +3,9 @@
 //     collisions (0.8–1.2 pair, phase-averaged and worst phase), energy drift of an elastic
 //     frictionless gas over 200 τ_c, and cost per step of a 2000-grain packing near jamming.
 //  2. Cost against N (1e3 .. 1e5 grains) on the relaxing lattice at ρ = 0.63.
+//  3. With --threads (alone): cost per step on 1 and 2 threads, dense packing and relaxing lattice.
 // Usage: fnet_sim_bench [max_N] [--cost-only]   (max_N default 100000; --cost-only skips part 1)
+//        fnet_sim_bench --threads
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +17,7 @@
 
 #include "server/sim/protocol.hpp"
 #include "server/sim/simulation.hpp"
+#include "server/sim/workers.hpp"
 #include "tests/sim/elastic_gas.hpp"
 
 using namespace fnet::sim;
@@ -84,10 +87,29 @@ Simulation dense_packing(Integrator integrator, double divisor) {
   return s;
 }
 
-double microseconds_per_step(Simulation s, int steps) {
+double microseconds_per_step(Simulation s, int steps, Workers* workers = nullptr) {
   const auto t = Clock::now();
-  for (int k = 0; k < steps; ++k) step(s);
+  for (int k = 0; k < steps; ++k) step(s, workers);
   return seconds_since(t) / steps * 1e6;
+}
+
+// Per-step cost on 1 and 2 threads (same bits either way) for a dense packing and a relaxing lattice.
+void thread_table() {
+  std::printf("\nThreads (2000 grains, Gear, tau/50; step() uses the team from 2 listed pairs per grain)\n");
+  std::printf("%-34s %14s %14s %14s %10s\n", "state", "pairs/grain", "1 thread us", "2 threads us", "speed-up");
+  Params lattice;
+  Simulation fast = dense_packing(Integrator::gear, 50);  // compressed on at 10x the speed: deep overlaps
+  fast.params.compression_speed = 1e-2;
+  fast.c.wall_speed = fast.params.compression_speed / fast.c.tau_c;
+  const std::pair<const char*, Simulation> states[] = {{"packing at rho 0.80, v_c = 1e-3", dense_packing(Integrator::gear, 50)},
+                                                       {"packing from rho 0.80, v_c = 1e-2", fast},
+                                                       {"fresh lattice, relaxing", make_lattice(lattice)}};
+  Workers one(1), two(2);
+  for (const auto& [name, state] : states) {
+    const double pairs = static_cast<double>(state.list.partner.size()) / static_cast<double>(state.n);
+    const double t1 = microseconds_per_step(state, 20000, &one), t2 = microseconds_per_step(state, 20000, &two);
+    std::printf("%-34s %14.2f %14.1f %14.1f %9.2fx\n", name, pairs, t1, t2, t1 / t2);
+  }
 }
 
 }  // namespace
@@ -95,6 +117,10 @@ double microseconds_per_step(Simulation s, int steps) {
 int main(int argc, char** argv) {
   const std::size_t max_n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
   const bool cost_only = argc > 2 && std::string(argv[2]) == "--cost-only";
+  if (argc > 1 && std::string(argv[1]) == "--threads") {
+    thread_table();
+    return 0;
+  }
 
   if (!cost_only) {
     std::printf("Gear-4 vs velocity Verlet (restitution: 0.8-1.2 pair over 32 contact phases; energy: elastic\n"
