@@ -5,10 +5,10 @@
 #include <mutex>
 #include <set>
 
-#include "common/diagram_json.hpp"
-#include "common/distance_json.hpp"
-#include "common/frame_analysis.hpp"
-#include "common/run_info_json.hpp"
+#include "common/codec/diagram_json.hpp"
+#include "common/codec/distance_json.hpp"
+#include "common/analysis/frame_analysis.hpp"
+#include "common/codec/run_info_json.hpp"
 
 namespace fnet::server {
 namespace {

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "common/diagram_json.hpp"
-#include "common/force_network.hpp"
-#include "common/frame.hpp"
-#include "common/frame_csv.hpp"
-#include "common/persistence.hpp"
+#include "common/codec/diagram_json.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/frame.hpp"
+#include "common/codec/frame_csv.hpp"
+#include "common/topology/persistence.hpp"
 #include "server/analysis/commands.hpp"
 
 namespace po = boost::program_options;

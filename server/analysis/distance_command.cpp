@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "common/diagram_json.hpp"
-#include "common/distance_json.hpp"
-#include "common/essential_convention.hpp"
-#include "common/frame_analysis.hpp"
+#include "common/codec/diagram_json.hpp"
+#include "common/codec/distance_json.hpp"
+#include "common/distance/essential_convention.hpp"
+#include "common/analysis/frame_analysis.hpp"
 #include "server/analysis/commands.hpp"
 
 namespace po = boost::program_options;

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <iostream>
 
-#include "common/frame_transport.hpp"
+#include "common/transport/frame_transport.hpp"
 
 namespace fnet::server {
 

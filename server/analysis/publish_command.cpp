@@ -5,7 +5,7 @@
 #include <iostream>
 #include <thread>
 
-#include "common/frame_transport.hpp"
+#include "common/transport/frame_transport.hpp"
 #include "server/analysis/commands.hpp"
 #include "server/analysis/run_source.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <iostream>
 
-#include "common/frame_analysis.hpp"
+#include "common/analysis/frame_analysis.hpp"
 
 namespace fnet::server {
 

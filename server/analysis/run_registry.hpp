@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis_store.hpp"
-#include "common/run_frame.hpp"
+#include "common/store/analysis_store.hpp"
+#include "common/analysis/run_frame.hpp"
 
 namespace fnet::server {
 

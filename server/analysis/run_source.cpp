@@ -1,8 +1,8 @@
 #include "server/analysis/run_source.hpp"
 
-#include "common/analysis_store.hpp"
-#include "common/run_csv.hpp"
-#include "common/run_file.hpp"
+#include "common/store/analysis_store.hpp"
+#include "common/codec/run_csv.hpp"
+#include "common/store/run_file.hpp"
 
 namespace fnet::analyze {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/run_frame.hpp"
+#include "common/analysis/run_frame.hpp"
 
 namespace fnet::analyze {
 

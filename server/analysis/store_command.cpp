@@ -5,8 +5,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "common/analysis_store.hpp"
-#include "common/frame_analysis.hpp"
+#include "common/store/analysis_store.hpp"
+#include "common/analysis/frame_analysis.hpp"
 #include "server/analysis/commands.hpp"
 #include "server/analysis/run_source.hpp"
 

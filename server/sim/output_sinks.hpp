@@ -9,8 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "common/frame_transport.hpp"
-#include "common/run_file.hpp"
+#include "common/transport/frame_transport.hpp"
+#include "common/store/run_file.hpp"
 #include "server/sim/params.hpp"
 #include "server/sim/snapshot.hpp"
 

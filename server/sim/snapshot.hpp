@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/frame.hpp"
+#include "common/topology/frame.hpp"
 
 namespace fnet::sim {
 

@@ -11,10 +11,10 @@
 #include <thread>
 
 #include "client/rpc_client.hpp"
-#include "common/analysis_store.hpp"
-#include "common/frame_analysis.hpp"
+#include "common/store/analysis_store.hpp"
+#include "common/analysis/frame_analysis.hpp"
 #include "tests/e2e/process.hpp"
-#include "tests/unit/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
 namespace {

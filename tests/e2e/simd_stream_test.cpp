@@ -7,12 +7,12 @@
 #include <thread>
 
 #include "client/rpc_client.hpp"
-#include "common/analysis_store.hpp"
-#include "common/frame_transport.hpp"
-#include "common/run_file.hpp"
+#include "common/store/analysis_store.hpp"
+#include "common/transport/frame_transport.hpp"
+#include "common/store/run_file.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/support/run_frame_compare.hpp"
-#include "tests/unit/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
 namespace {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/force_network.hpp"
-#include "common/frame.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/frame.hpp"
 
 namespace fnet::reference {
 

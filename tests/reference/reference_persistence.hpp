@@ -3,9 +3,9 @@
 
 #include <cstddef>
 
-#include "common/diagram.hpp"
-#include "common/force_network.hpp"
-#include "common/frame.hpp"
+#include "common/topology/diagram.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/frame.hpp"
 
 namespace fnet::reference {
 

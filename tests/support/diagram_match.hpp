@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "common/diagram.hpp"
+#include "common/topology/diagram.hpp"
 
 namespace fnet::testing {
 

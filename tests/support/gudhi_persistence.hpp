@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <span>
 
-#include "common/force_network.hpp"
-#include "common/persistence.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/persistence.hpp"
 
 namespace fnet::testing {
 

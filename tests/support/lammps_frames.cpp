@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "common/frame_csv.hpp"
+#include "common/codec/frame_csv.hpp"
 
 namespace fnet::testing {
 namespace {

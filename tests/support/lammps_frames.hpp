@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "common/frame.hpp"
+#include "common/topology/frame.hpp"
 
 namespace fnet::testing {
 

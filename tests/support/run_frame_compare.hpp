@@ -6,7 +6,7 @@
 
 #include <cstring>
 
-#include "common/run_frame.hpp"
+#include "common/analysis/run_frame.hpp"
 
 namespace fnet::testing {
 

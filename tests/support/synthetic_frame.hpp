@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/frame.hpp"
+#include "common/topology/frame.hpp"
 
 namespace fnet::testing {
 

@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/bottleneck.hpp"
-#include "common/diagram_json.hpp"
-#include "common/wasserstein.hpp"
+#include "common/distance/bottleneck.hpp"
+#include "common/codec/diagram_json.hpp"
+#include "common/distance/wasserstein.hpp"
 
 using namespace fnet;
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "common/force_network.hpp"
-#include "common/persistence.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/persistence.hpp"
 #include "tests/bench/persistence/child_process.hpp"
 #include "tests/bench/persistence/median_time.hpp"
 #include "tests/support/diagram_match.hpp"

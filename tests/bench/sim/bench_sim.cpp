@@ -18,7 +18,7 @@
 #include "server/sim/protocol.hpp"
 #include "server/sim/simulation.hpp"
 #include "server/sim/workers.hpp"
-#include "tests/sim/elastic_gas.hpp"
+#include "tests/server/sim/elastic_gas.hpp"
 
 using namespace fnet::sim;
 using Clock = std::chrono::steady_clock;

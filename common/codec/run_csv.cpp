@@ -1,0 +1,62 @@
+#include "common/codec/run_csv.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "common/codec/frame_csv.hpp"
+
+namespace fnet {
+
+std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::string& run_id) {
+  const std::filesystem::path index = dir / "index.csv";
+  std::ifstream in(index);
+  if (!in) throw CsvError(index.string() + ": cannot open file");
+  std::string line;
+  std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const auto split = [](const std::string& row) {
+    std::vector<std::string> cells;
+    std::string cell;
+    for (std::stringstream s(row); std::getline(s, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> header = split(line);
+  const auto column = [&](const std::string& name, bool required) -> int {
+    for (std::size_t k = 0; k < header.size(); ++k)
+      if (header[k] == name) return static_cast<int>(k);
+    if (required) throw CsvError(index.string() + ":1: header lacks column '" + name + "'");
+    return -1;
+  };
+  const int c_frame = column("frame", true), c_step = column("step", true), c_time = column("time", false),
+            c_rho = column("rho", true), c_z = column("Z", true);
+  std::vector<RunFrame> out;
+  std::size_t line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = split(line);
+    if (cells.size() != header.size())
+      throw CsvError(index.string() + ":" + std::to_string(line_no) + ": expected " + std::to_string(header.size()) + " fields");
+    RunFrame f;
+    try {
+      f.header.run_id = run_id;
+      f.header.index = static_cast<std::uint32_t>(std::stoul(cells[c_frame]));
+      f.header.step = std::stoull(cells[c_step]);
+      f.header.time = c_time >= 0 ? std::stod(cells[c_time]) : 0.0;
+      f.header.rho = std::stod(cells[c_rho]);
+      f.header.z = std::stod(cells[c_z]);
+    } catch (const std::exception&) {
+      throw CsvError(index.string() + ":" + std::to_string(line_no) + ": not a number in '" + line + "'");
+    }
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "frame_%04u", f.header.index);
+    f.frame = read_frame_csv(dir / (std::string(stem) + "_contacts.csv"), dir / (std::string(stem) + "_particles.csv"));
+    f.frame.label = frame_label(run_id, f.header.index);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+}  // namespace fnet

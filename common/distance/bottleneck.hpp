@@ -1,0 +1,26 @@
+// Bottleneck distance between persistence diagrams: L-infinity ground metric, any point may go to
+// the diagonal at (birth - death) / 2. Exact by default; optionally a certified relative error.
+#pragma once
+
+#include "common/topology/diagram.hpp"
+#include "common/distance/distance_result.hpp"
+#include "common/distance/essential_convention.hpp"
+
+namespace fnet {
+
+struct BottleneckParams {
+  EssentialConvention essential = EssentialConvention::floor;
+  // 0: exact. e > 0: stop once upper <= (1 + e) * lower; value = upper, the bottleneck of an
+  // actual matching.
+  double relative_error = 0;
+};
+
+// The answer is the smallest r at which a matching covers every point farther than r from the
+// diagonal using pairs at distance <= r. Each test of r is a warm-started augmenting-path search
+// on 2-d trees with deletion (Efrat-Itai-Katz, as in Hera); r is bisected over the bit patterns of
+// doubles and snapped down to the value of each matching found, so the result is an exact input
+// distance after at most 64 tests, with no tolerance anywhere (hence exactly scale-invariant
+// under multiplication by powers of two, and to rounding otherwise).
+DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const BottleneckParams& params = {});
+
+}  // namespace fnet

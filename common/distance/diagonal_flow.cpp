@@ -1,0 +1,436 @@
+#include "common/distance/diagonal_flow.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+
+namespace fnet {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::int64_t kGenerator[2] = {-1, -2};  // heap ids of the two hubs' lazy arc streams
+// Heap ids of tree boxes start here: at equal keys nodes pop first, so a sink found at the current
+// distance ends the search before any box that cannot beat it is opened.
+constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
+}  // namespace
+
+DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
+                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
+    : n_(static_cast<std::uint32_t>(diagonal_a.size())), m_(static_cast<std::uint32_t>(diagonal_b.size())),
+      ha_(n_ + m_), hb_(n_ + m_ + 1), da_(std::move(diagonal_a)), db_(std::move(diagonal_b)),
+      mate_a_(n_, kNone), mate_b_(m_, kNone), mate_cost_a_(n_, 0), pi_(n_ + m_ + 2, 0.0),
+      key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()), dist_(n_ + m_ + 2, kInf),
+      pred_cost_(n_ + m_ + 2, 0), pred_(n_ + m_ + 2, 0), seen_(n_ + m_ + 2, 0), final_(n_ + m_ + 2, 0) {
+  for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
+  q_ = q;
+  pa_.assign(a.begin(), a.end());
+  tree_b_ = std::make_unique<LinfKdTree>(b);
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  box_parent_.assign(nodes.size(), -1);
+  leaf_of_b_.assign(b.size(), -1);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    if (nodes[k].left >= 0) {
+      box_parent_[nodes[k].left] = box_parent_[nodes[k].right] = static_cast<std::int32_t>(k);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) leaf_of_b_[order[s]] = static_cast<std::int32_t>(k);
+    }
+  }
+  box_max_.assign(nodes.size(), {});
+  box_run_.assign(nodes.size(), 0);
+  box_db_.assign(nodes.size(), 0.0);
+  for (std::size_t k = nodes.size(); k-- > 0;) {
+    if (nodes[k].left >= 0) {
+      box_db_[k] = std::max(box_db_[nodes[k].left], box_db_[nodes[k].right]);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) box_db_[k] = std::max(box_db_[k], db_[order[s]]);
+    }
+  }
+  box_done_.assign(nodes.size(), 0);
+  for (std::size_t k = nodes.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
+  greedy_start();
+}
+
+void DiagonalFlow::greedy_start() {
+  // Row reduction: with pi(b) = pi(HA) = pi(HB) = 0, pi(a_i) = -(its cheapest way out) keeps every
+  // reduced cost >= 0, and a_i's cheapest arc is tight: take it when its head is still free (the
+  // diagonal always is). Consecutive frames' diagrams are close, so most rows are settled here.
+  std::vector<std::uint32_t> near;
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    tree_b_->nearest(pa_[i], 4, near, i);
+    double best = da_[i];
+    std::int64_t to = kDiagonal;
+    for (const std::uint32_t j : near) {
+      const double c = cost(i, j);
+      if (c < best || (c == best && to >= 0 && mate_b_[to] != kNone && mate_b_[j] == kNone)) best = c, to = j;
+    }
+    pi_[i] = -best;
+    if (to == kDiagonal) {
+      mate_a_[i] = kDiagonal, ++a_to_diagonal_;
+    } else if (mate_b_[to] == kNone) {
+      mate_a_[i] = to, mate_b_[to] = i, mate_cost_a_[i] = best;
+    }
+    refresh(i);
+  }
+  // Column step for the b_j still free: pi(b_j) = min(db_j, min_i c_ij + pi(a_i)) keeps every arc
+  // into b_j feasible; when the diagonal attains it, b_j is fed from the diagonal (tight). Without
+  // this the diagonal's supply is routed last, each unit by a search over most of the graph.
+  const LinfKdTree tree_a(pa_);
+  const auto nodes = tree_a.nodes();
+  const auto order = tree_a.order();
+  std::vector<double> min_pi(nodes.size(), kInf);
+  for (std::size_t k = nodes.size(); k-- > 0;) {
+    if (nodes[k].left >= 0) {
+      min_pi[k] = std::min(min_pi[nodes[k].left], min_pi[nodes[k].right]);
+    } else {
+      for (std::uint32_t s = nodes[k].begin; s < nodes[k].end; ++s) min_pi[k] = std::min(min_pi[k], pi_[order[s]]);
+    }
+  }
+  std::vector<std::int32_t> stack;
+  const auto points_b = tree_b_->points();
+  for (std::uint32_t j = 0; j < m_; ++j) {
+    if (mate_b_[j] != kNone || nodes.empty()) continue;
+    double best = db_[j];
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const auto& node = nodes[stack.back()];
+      stack.pop_back();
+      const double distance = tree_a.box_distance(node, points_b[j]);
+      const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+      if (!(c + min_pi[&node - nodes.data()] < best)) continue;
+      if (node.left >= 0) {
+        stack.push_back(node.left), stack.push_back(node.right);
+        continue;
+      }
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t i = order[s];
+        best = std::min(best, cost(i, j) + pi_[i]);
+      }
+    }
+    pi_[n_ + j] = best;
+    if (best == db_[j]) mate_b_[j] = kDiagonal, ++b_from_diagonal_;
+  }
+  for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
+  for (std::size_t k = box_max_.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
+}
+
+bool DiagonalFlow::recompute_box(std::int32_t k) {
+  const auto& node = tree_b_->nodes()[k];
+  BoxMax value;
+  if (node.left < 0) {
+    const auto order = tree_b_->order();
+    const auto points = tree_b_->points();
+    for (std::uint32_t s = node.begin; s < node.end; ++s) {
+      const std::uint32_t j = order[s];
+      const double p = pi_[n_ + j];
+      const PlanePoint b = points[j];
+      value.pi = std::max(value.pi, p);
+      value.minus_x = std::max(value.minus_x, p - b.x), value.plus_x = std::max(value.plus_x, p + b.x);
+      value.minus_y = std::max(value.minus_y, p - b.y), value.plus_y = std::max(value.plus_y, p + b.y);
+    }
+  } else {
+    const BoxMax& l = box_max_[node.left];
+    const BoxMax& r = box_max_[node.right];
+    value = {std::max(l.pi, r.pi), std::max(l.minus_x, r.minus_x), std::max(l.plus_x, r.plus_x),
+             std::max(l.minus_y, r.minus_y), std::max(l.plus_y, r.plus_y)};
+  }
+  BoxMax& old = box_max_[k];
+  const bool same = old.pi == value.pi && old.minus_x == value.minus_x && old.plus_x == value.plus_x &&
+                    old.minus_y == value.minus_y && old.plus_y == value.plus_y;
+  old = value;
+  return !same;
+}
+
+double DiagonalFlow::cost(std::uint32_t i, std::uint32_t j) const {
+  const double d = linf_distance(pa_[i], tree_b_->points()[j]);
+  return q_ == 1 ? d : q_ == 2 ? d * d : std::pow(d, q_);
+}
+
+double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
+  const auto& box = tree_b_->nodes()[node];
+  if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
+  const double distance = tree_b_->box_distance(box, pa_[i]);
+  const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+  if (!(c < da_[i] + box_db_[node])) return kInf;  // no arc into the box beats the diagonal
+  const BoxMax& m = box_max_[node];
+  double bound = c + pi_[i] - m.pi;
+  if (q_ == 1) {
+    // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
+    const PlanePoint a = pa_[i];
+    bound = std::max({bound, pi_[i] - a.x - m.minus_x, pi_[i] + a.x - m.plus_x, pi_[i] - a.y - m.minus_y,
+                      pi_[i] + a.y - m.plus_y});
+  }
+  return dist_[i] + std::max(0.0, bound);
+}
+
+void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
+  // Boxes whose key is not above the current distance would pop next anyway: open them at once.
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  const double d = dist_[i];
+  box_stack_.clear();
+  box_stack_.push_back(node);
+  while (!box_stack_.empty()) {
+    const std::int32_t k = box_stack_.back();
+    box_stack_.pop_back();
+    const auto& box = nodes[k];
+    ++boxes_opened_;
+    if (box.left >= 0) {
+      for (const std::int32_t child : {box.left, box.right}) {
+        const double key = box_key(i, child);
+        if (key == kInf) continue;
+        if (key <= current_) {
+          box_stack_.push_back(child);
+        } else {
+          boxes_.push_back({i, child});
+          heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
+          std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+        }
+      }
+      continue;
+    }
+    for (std::uint32_t s = box.begin; s < box.end; ++s) {
+      const std::uint32_t j = order[s];
+      if (mate_a_[i] == static_cast<std::int64_t>(j)) continue;
+      const double c = cost(i, j);
+      if (!(c < da_[i] + db_[j])) continue;  // never beats sending both to the diagonal
+      relax(n_ + j, d + std::max(0.0, c + pi_[i] - pi_[n_ + j]), i, c);
+    }
+  }
+}
+
+void DiagonalFlow::update_box_maxima(std::uint32_t j) {
+  for (std::int32_t k = leaf_of_b_[j]; k >= 0 && recompute_box(k); k = box_parent_[k]) {
+  }
+}
+
+double DiagonalFlow::primal_cost() const {
+  double cost = 0;
+  for (std::uint32_t i = 0; i < n_; ++i) cost += mate_a_[i] >= 0 ? mate_cost_a_[i] : da_[i];
+  for (std::uint32_t j = 0; j < m_; ++j)
+    if (mate_b_[j] < 0) cost += db_[j];
+  return cost;
+}
+
+void DiagonalFlow::refresh(std::uint32_t node) {
+  double want = std::numeric_limits<double>::quiet_NaN();
+  int which = -1;
+  if (node < n_) {
+    if (mate_a_[node] == kDiagonal) want = -da_[node] - pi_[node], which = 1;
+  } else if (node < n_ + m_) {
+    if (mate_b_[node - n_] != kDiagonal) want = db_[node - n_] - pi_[node], which = 0;
+  }
+  auto& set = node < n_ ? hub_b_ : hub_a_;
+  if (!std::isnan(key_[node])) {
+    if (key_[node] == want) return;
+    set.erase({key_[node], node < n_ ? node : node - n_});
+  }
+  key_[node] = want;
+  if (which >= 0) set.insert({want, node < n_ ? node : node - n_});
+}
+
+bool DiagonalFlow::is_sink(std::uint32_t v) const {
+  if (v >= n_ && v < n_ + m_) return mate_b_[v - n_] == kNone;
+  if (v == hb_) return a_to_diagonal_ + flow_hub_ < static_cast<std::int64_t>(n_);
+  return false;
+}
+
+void DiagonalFlow::relax(std::uint32_t v, double d, std::uint32_t from, double cost) {
+  if (final_[v] == run_) return;
+  if (seen_[v] == run_ && dist_[v] <= d) return;
+  seen_[v] = run_;
+  dist_[v] = d;
+  pred_[v] = from;
+  pred_cost_[v] = cost;
+  heap_.push_back({d, v});
+  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  // Nothing left in the heap is below current_: a sink reached at that distance is a shortest path.
+  if (d <= current_ && early_ < 0 && is_sink(v)) early_ = v;
+}
+
+void DiagonalFlow::push_generator(int which) {
+  const auto& set = which == 0 ? hub_a_ : hub_b_;
+  const std::uint32_t offset = which == 0 ? n_ : 0;
+  Cursor& c = cursor_[which];
+  while (c != set.end() && final_[offset + c->second] == run_) ++c;
+  if (c == set.end()) return;
+  const std::uint32_t hub = which == 0 ? ha_ : hb_;
+  const double d = hub_dist_[which] + std::max(0.0, pi_[hub] + c->first);
+  heap_.push_back({d, kGenerator[which]});
+  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+}
+
+void DiagonalFlow::scan(std::uint32_t u, double d) {
+  if (u < n_) {
+    if (!tree_b_->nodes().empty()) {
+      const double key = box_key(u, 0);
+      if (key <= d) {
+        open_box(u, 0);
+      } else if (key < kInf) {
+        boxes_.push_back({u, 0});
+        heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
+        std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+      }
+    }
+    if (mate_a_[u] != kDiagonal) relax(hb_, d + std::max(0.0, da_[u] + pi_[u] - pi_[hb_]), u, da_[u]);
+  } else if (u < n_ + m_) {
+    const std::int64_t mate = mate_b_[u - n_];
+    if (mate >= 0) {
+      const auto i = static_cast<std::uint32_t>(mate);
+      relax(i, d + std::max(0.0, -mate_cost_a_[i] + pi_[u] - pi_[i]), u, -mate_cost_a_[i]);
+    } else if (mate == kDiagonal) {
+      relax(ha_, d + std::max(0.0, -db_[u - n_] + pi_[u] - pi_[ha_]), u, -db_[u - n_]);
+    }
+  } else if (u == ha_) {
+    relax(hb_, d + std::max(0.0, pi_[ha_] - pi_[hb_]), u, 0);
+    hub_dist_[0] = d;
+    cursor_[0] = hub_a_.begin();
+    push_generator(0);
+  } else {
+    if (flow_hub_ > 0) relax(ha_, d + std::max(0.0, pi_[hb_] - pi_[ha_]), u, 0);
+    hub_dist_[1] = d;
+    cursor_[1] = hub_b_.begin();
+    push_generator(1);
+  }
+}
+
+bool DiagonalFlow::dijkstra(std::uint32_t source) {
+  ++run_;
+  heap_.clear();
+  boxes_.clear();
+  early_ = -1;
+  current_ = -kInf;
+  finalized_.clear();
+  seen_[source] = run_;
+  dist_[source] = 0;
+  heap_.push_back({0.0, source});
+  std::int64_t target = -1;
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+    const auto [d, id] = heap_.back();
+    heap_.pop_back();
+    if (id >= kBoxBase) {
+      const BoxEntry box = boxes_[static_cast<std::size_t>(id - kBoxBase)];
+      current_ = d;
+      open_box(box.row, box.node);
+      if (early_ >= 0) {
+        target = early_;
+        break;
+      }
+      continue;
+    }
+    if (id < 0) {
+      const int which = id == kGenerator[0] ? 0 : 1;
+      const auto& set = which == 0 ? hub_a_ : hub_b_;
+      const std::uint32_t offset = which == 0 ? n_ : 0, hub = which == 0 ? ha_ : hb_;
+      Cursor& c = cursor_[which];
+      while (c != set.end() && final_[offset + c->second] == run_) ++c;
+      if (c == set.end()) continue;
+      const std::uint32_t v = offset + c->second;
+      const double arc_cost = which == 0 ? db_[c->second] : -da_[c->second];
+      relax(v, hub_dist_[which] + std::max(0.0, pi_[hub] + c->first), hub, arc_cost);
+      ++c;
+      push_generator(which);
+      continue;
+    }
+    const auto u = static_cast<std::uint32_t>(id);
+    if (final_[u] == run_ || d > dist_[u]) continue;
+    final_[u] = run_;
+    finalized_.push_back(u);
+    ++settled_;
+    if (u >= n_ && u < n_ + m_) {
+      for (std::int32_t k = leaf_of_b_[u - n_]; k >= 0; k = box_parent_[k]) {
+        if (box_run_[k] != run_) box_run_[k] = run_, box_done_[k] = 0;
+        ++box_done_[k];
+      }
+    }
+    if (u != source && is_sink(u)) {
+      target = u;
+      break;
+    }
+    current_ = d;
+    scan(u, d);
+    if (early_ >= 0) {
+      target = early_;
+      break;
+    }
+  }
+  if (target < 0) return false;
+  // Early exit: every settled node is at distance <= total, the rest keep their potentials.
+  const double total = dist_[target];
+  for (const std::uint32_t v : finalized_) pi_[v] -= total - dist_[v];
+  augment(source, static_cast<std::uint32_t>(target));
+  for (const std::uint32_t v : finalized_) refresh(v);
+  for (const std::uint32_t v : finalized_)
+    if (v >= n_ && v < n_ + m_) update_box_maxima(v - n_);
+  return true;
+}
+
+void DiagonalFlow::augment(std::uint32_t source, std::uint32_t target) {
+
+  // Augment along the path, source to target.
+  std::vector<std::uint32_t>& path = path_;
+  path.clear();
+  for (auto v = static_cast<std::uint32_t>(target);; v = pred_[v]) {
+    path.push_back(v);
+    if (v == source) break;
+  }
+  std::reverse(path.begin(), path.end());
+  std::int64_t amount = 1;
+  if (path.size() == 2 && path[0] == ha_ && path[1] == hb_) {
+    const std::int64_t supply = static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_;
+    const std::int64_t demand = static_cast<std::int64_t>(n_) - a_to_diagonal_ - flow_hub_;
+    amount = std::max<std::int64_t>(1, std::min(supply, demand));
+  }
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const std::uint32_t u = path[k], v = path[k + 1];
+    if (u < n_ && v < n_ + m_) {  // a_i -> b_j
+      mate_a_[u] = v - n_, mate_b_[v - n_] = u, mate_cost_a_[u] = pred_cost_[v];
+    } else if (u < n_ && v == hb_) {
+      mate_a_[u] = kDiagonal, ++a_to_diagonal_;
+    } else if (u == ha_ && v < n_ + m_) {
+      mate_b_[v - n_] = kDiagonal, ++b_from_diagonal_;
+    } else if (u == ha_ && v == hb_) {
+      flow_hub_ += amount;
+    } else if (u == hb_ && v == ha_) {
+      --flow_hub_;
+    } else if (u == hb_ && v < n_) {  // a_v leaves the diagonal
+      if (mate_a_[v] == kDiagonal) mate_a_[v] = kNone;
+      --a_to_diagonal_;
+    } else if (v == ha_) {  // b_u no longer fed by the diagonal
+      if (mate_b_[u - n_] == kDiagonal) mate_b_[u - n_] = kNone;
+      --b_from_diagonal_;
+    } else {  // b_u -> a_v: the pair (a_v, b_u) is undone
+      if (mate_a_[v] == static_cast<std::int64_t>(u - n_)) mate_a_[v] = kNone;
+      if (mate_b_[u - n_] == static_cast<std::int64_t>(v)) mate_b_[u - n_] = kNone;
+    }
+  }
+  for (const std::uint32_t v : path) refresh(v);
+  ++augmentations_;
+}
+
+double DiagonalFlow::dual_bound() const {
+  // LP duality on the assignment form (every arc but HA -> HB has capacity 1, which changes
+  // nothing as each a_i supplies and each b_j takes one unit): demand * potential minus supply *
+  // potential, minus each capacity-1 arc's negative reduced cost. The pair arcs all have reduced
+  // cost >= 0 (the searches scan them all; pairs with c_ij >= da_i + db_j are left out of the
+  // problem, which keeps its optimum). The hub arcs into a point already matched to the diagonal
+  // are never scanned (they only close cycles) and may go negative: charged here.
+  double dual = static_cast<double>(n_) * pi_[hb_] - static_cast<double>(m_) * pi_[ha_];
+  for (std::uint32_t i = 0; i < n_; ++i) dual -= pi_[i] + std::max(0.0, -(da_[i] + pi_[i] - pi_[hb_]));
+  for (std::uint32_t j = 0; j < m_; ++j) dual += pi_[n_ + j] - std::max(0.0, -(db_[j] + pi_[ha_] - pi_[n_ + j]));
+  // HA -> HB is unbounded: a negative reduced cost there (beyond rounding) voids the bound.
+  if (pi_[ha_] - pi_[hb_] < -1e-12 * (std::fabs(pi_[ha_]) + std::fabs(pi_[hb_]))) return -kInf;
+  return dual;
+}
+
+void DiagonalFlow::solve() {
+  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0)
+    if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
+  for (std::uint32_t i = 0; i < n_; ++i)
+    if (mate_a_[i] == kNone && !dijkstra(i)) throw std::logic_error("diagonal flow: no augmenting path");
+}
+
+}  // namespace fnet

@@ -1,0 +1,123 @@
+// The Wasserstein matching between diagrams A and B as a min-cost flow, with the diagonal as two
+// hubs instead of n + m diagonal copies:
+//   a_i -> b_j   cost c_ij, a_i -> HB cost da_i (a_i to the diagonal),
+//   HA  -> b_j   cost db_j (b_j from the diagonal),  HA -> HB cost 0, unbounded.
+// Supplies: a_i 1, HA m; demands: b_j 1, HB n. Solved by successive shortest paths (Dijkstra with
+// potentials, early exit); the hubs' many arcs are scanned lazily from ordered sets, so a search
+// costs what it visits, not O(n + m). Internal to the Wasserstein distance.
+//
+// The pair arcs are implicit: every pair (a_i, b_j) with c_ij < da_i + db_j is an
+// arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
+// a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
+// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (for q = 1 also the
+// bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow potentials
+// sloping across the box). Boxes are opened best first, boxes whose points are all settled are
+// skipped, so the search is exact on the complete graph and no optimality certificate is needed.
+// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
+// column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
+// the diagonal's remaining units are routed before the remaining rows (measured: ~10% fewer nodes
+// settled on LAMMPS PD1 pairs).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "common/distance/linf_kdtree.hpp"
+
+namespace fnet {
+
+class DiagonalFlow {
+ public:
+  static constexpr std::int64_t kNone = -1, kDiagonal = -2;
+
+  // Costs to the diagonal, already raised to the power q; c_ij = ||a_i - b_j||_inf ^ q (a and b
+  // already scaled like the costs).
+  DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::span<const PlanePoint> a,
+               std::span<const PlanePoint> b, double q);
+
+  // Completes the flow to an optimal one.
+  void solve();
+  // A lower bound on the optimal cost from the current potentials (LP duality), valid at any
+  // time; once solve() returns it equals primal_cost() up to rounding: the optimality certificate.
+  double dual_bound() const;
+
+  // The current flow's cost: matched pairs plus points sent to the diagonal.
+  double primal_cost() const;
+  std::int64_t mate_of_a(std::uint32_t i) const { return mate_a_[i]; }
+
+  // Potentials (dual variables): reduced cost of u -> v is cost + potential(u) - potential(v).
+  std::span<const double> potentials() const { return pi_; }  // a_0..a_{n-1}, b_0..b_{m-1}, HA, HB
+  double diagonal_a(std::uint32_t i) const { return da_[i]; }
+  double diagonal_b(std::uint32_t j) const { return db_[j]; }
+  std::size_t augmentations() const { return augmentations_; }
+  std::size_t settled() const { return settled_; }
+  std::size_t boxes_opened() const { return boxes_opened_; }
+
+ private:
+  // A shortest path from source to a sink, then augment; false when no sink is reachable.
+  bool dijkstra(std::uint32_t source);
+  void augment(std::uint32_t source, std::uint32_t target);
+  void relax(std::uint32_t v, double d, std::uint32_t from, double cost);
+  void scan(std::uint32_t u, double d);
+  void push_generator(int which);
+  void refresh(std::uint32_t node);
+  bool is_sink(std::uint32_t v) const;
+  double cost(std::uint32_t i, std::uint32_t j) const;
+  double box_key(std::uint32_t i, std::int32_t node) const;
+  void open_box(std::uint32_t i, std::int32_t node);
+  void update_box_maxima(std::uint32_t j);
+
+  std::uint32_t n_, m_, ha_, hb_;
+  std::vector<double> da_, db_;
+
+  std::vector<std::int64_t> mate_a_, mate_b_;  // partner index, kDiagonal or kNone
+  std::vector<double> mate_cost_a_;
+  std::int64_t flow_hub_ = 0, b_from_diagonal_ = 0, a_to_diagonal_ = 0;
+  std::vector<double> pi_;
+
+  // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
+  // to the diagonal, keyed -da_i - pi(a_i).
+  std::set<std::pair<double, std::uint32_t>> hub_a_, hub_b_;
+  std::vector<double> key_;   // the key a node is filed under, NaN if not filed
+  using Cursor = std::set<std::pair<double, std::uint32_t>>::const_iterator;
+  Cursor cursor_[2];
+  double hub_dist_[2] = {0, 0};
+
+  // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
+  // between refreshes), each node's parent and each point's leaf.
+  double q_ = 1;
+  std::vector<PlanePoint> pa_;
+  std::unique_ptr<LinfKdTree> tree_b_;
+  struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b
+    double pi = -kHuge, minus_x = -kHuge, plus_x = -kHuge, minus_y = -kHuge, plus_y = -kHuge;
+  };
+  static constexpr double kHuge = 1e300;
+  std::vector<BoxMax> box_max_;
+  bool recompute_box(std::int32_t k);
+  void greedy_start();
+  std::vector<std::int32_t> box_stack_;
+  std::vector<double> box_db_;  // max db over the box
+  std::vector<std::uint32_t> box_run_, box_done_;  // points settled in the box during search box_run_
+  std::vector<std::int32_t> box_parent_, leaf_of_b_;
+  struct BoxEntry {
+    std::uint32_t row;
+    std::int32_t node;
+  };
+  std::vector<BoxEntry> boxes_;  // heap ids from kBoxBase on index this
+  double current_ = 0;           // key of the entry being processed
+  std::int64_t early_ = -1;      // a sink relaxed at distance current_
+
+  // Dijkstra workspace.
+  std::uint32_t run_ = 0;
+  std::vector<double> dist_, pred_cost_;
+  std::vector<std::uint32_t> pred_, seen_, final_;
+  std::vector<std::uint32_t> finalized_, path_;
+  std::vector<std::pair<double, std::int64_t>> heap_;
+  std::size_t augmentations_ = 0, settled_ = 0, boxes_opened_ = 0;
+};
+
+}  // namespace fnet

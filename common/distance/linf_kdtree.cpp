@@ -1,0 +1,157 @@
+#include "common/distance/linf_kdtree.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <queue>
+#include <utility>
+
+namespace fnet {
+
+namespace {
+constexpr std::uint32_t kLeafSize = 8;
+}
+
+LinfKdTree::LinfKdTree(std::span<const PlanePoint> points)
+    : points_(points.begin(), points.end()), order_(points.size()), leaf_of_(points.size(), -1),
+      erased_(points.size(), 0) {
+  for (std::uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
+  nodes_.reserve(2 * points.size() / kLeafSize + 2);
+  if (!points.empty()) build(0, static_cast<std::uint32_t>(points.size()), -1, 0);
+  alive_.resize(nodes_.size());
+  for (std::size_t k = 0; k < nodes_.size(); ++k) alive_[k] = nodes_[k].end - nodes_[k].begin;
+}
+
+std::int32_t LinfKdTree::build(std::uint32_t begin, std::uint32_t end, std::int32_t parent, int depth) {
+  const auto id = static_cast<std::int32_t>(nodes_.size());
+  Node node{points_[order_[begin]].x, points_[order_[begin]].x, points_[order_[begin]].y,
+            points_[order_[begin]].y, begin, end};
+  for (std::uint32_t k = begin; k < end; ++k) {
+    const PlanePoint p = points_[order_[k]];
+    node.xmin = std::min(node.xmin, p.x), node.xmax = std::max(node.xmax, p.x);
+    node.ymin = std::min(node.ymin, p.y), node.ymax = std::max(node.ymax, p.y);
+  }
+  nodes_.push_back(node);
+  parent_.push_back(parent);
+  if (end - begin <= kLeafSize) {
+    for (std::uint32_t k = begin; k < end; ++k) leaf_of_[order_[k]] = id;
+    return id;
+  }
+  // Split the wider side at the median; diagrams are often thin (PD1 under floor lies on y = 0).
+  const bool by_x = (node.xmax - node.xmin) >= (node.ymax - node.ymin);
+  (void)depth;
+  const std::uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     return by_x ? points_[a].x < points_[b].x : points_[a].y < points_[b].y;
+                   });
+  const std::int32_t left = build(begin, mid, id, depth + 1);
+  const std::int32_t right = build(mid, end, id, depth + 1);
+  nodes_[id].left = left;
+  nodes_[id].right = right;
+  return id;
+}
+
+double LinfKdTree::box_distance(const Node& node, PlanePoint q) const {
+  const double dx = std::max({node.xmin - q.x, q.x - node.xmax, 0.0});
+  const double dy = std::max({node.ymin - q.y, q.y - node.ymax, 0.0});
+  return std::max(dx, dy);
+}
+
+namespace {
+std::uint64_t mix(std::uint64_t x) {  // splitmix64 finalizer
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+}  // namespace
+
+void LinfKdTree::nearest(PlanePoint q, std::size_t k, std::vector<std::uint32_t>& out, std::uint64_t salt) const {
+  out.clear();
+  if (nodes_.empty() || k == 0) return;
+  // Max-heap of the best k so far as (distance, tie-break, point); best-first descent by box
+  // distance. With a salt, boxes at exactly the worst distance are still opened: they may win the
+  // tie-break.
+  struct Best {
+    double d;
+    std::uint64_t tie;
+    std::uint32_t p;
+    bool operator<(const Best& o) const { return d != o.d ? d < o.d : tie < o.tie; }
+  };
+  std::vector<Best> best;
+  best.reserve(k + 1);
+  auto worst = [&] { return best.size() < k ? std::numeric_limits<double>::infinity() : best.front().d; };
+  using Entry = std::pair<double, std::int32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> frontier;
+  frontier.push({0.0, 0});
+  const std::uint64_t seed = mix(salt);
+  while (!frontier.empty()) {
+    const auto [dist, id] = frontier.top();
+    frontier.pop();
+    if (dist > worst() || (salt == 0 && dist == worst())) break;
+    const Node& node = nodes_[id];
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t p = order_[s];
+        const Best candidate{linf_distance(points_[p], q), salt == 0 ? p : mix(seed ^ p), p};
+        if (best.size() < k) {
+          best.push_back(candidate);
+          std::push_heap(best.begin(), best.end());
+        } else if (candidate < best.front()) {
+          std::pop_heap(best.begin(), best.end());
+          best.back() = candidate;
+          std::push_heap(best.begin(), best.end());
+        }
+      }
+      continue;
+    }
+    for (const std::int32_t child : {node.left, node.right}) {
+      const double d = box_distance(nodes_[child], q);
+      if (d < worst() || (salt != 0 && d == worst())) frontier.push({d, child});
+    }
+  }
+  std::sort_heap(best.begin(), best.end());
+  for (const Best& b : best) out.push_back(b.p);
+}
+
+std::int64_t LinfKdTree::take_within(PlanePoint q, double r) {
+  if (nodes_.empty()) return -1;
+  stack_.clear();
+  stack_.push_back(0);
+  while (!stack_.empty()) {
+    const std::int32_t id = stack_.back();
+    stack_.pop_back();
+    const Node& node = nodes_[id];
+    if (alive_[id] == 0 || box_distance(node, q) > r) continue;
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t p = order_[s];
+        if (!erased_[p] && linf_distance(points_[p], q) <= r) {
+          erase(p);
+          return p;
+        }
+      }
+      continue;
+    }
+    stack_.push_back(node.right);
+    stack_.push_back(node.left);
+  }
+  return -1;
+}
+
+void LinfKdTree::erase(std::uint32_t point) {
+  if (erased_[point]) return;
+  erased_[point] = 1;
+  erased_list_.push_back(point);
+  for (std::int32_t id = leaf_of_[point]; id >= 0; id = parent_[id]) --alive_[id];
+}
+
+void LinfKdTree::restore_all() {
+  for (const std::uint32_t point : erased_list_) {
+    erased_[point] = 0;
+    for (std::int32_t id = leaf_of_[point]; id >= 0; id = parent_[id]) ++alive_[id];
+  }
+  erased_list_.clear();
+}
+
+}  // namespace fnet

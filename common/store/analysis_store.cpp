@@ -1,0 +1,221 @@
+#include "common/store/analysis_store.hpp"
+
+#include <array>
+#include <cctype>
+#include <cstring>
+
+#include "common/store/hdf5_io.hpp"
+#include "common/codec/run_info_json.hpp"
+
+namespace fnet {
+namespace {
+
+using h5::check;
+
+constexpr std::size_t kInfoBytes = 16384;    // one run announcement, as JSON
+constexpr std::size_t kReasonBytes = 1024;   // one rejection reason
+constexpr std::size_t kCounts = 6;           // vertices, edges, triangles of normal, then tangential
+constexpr std::size_t kOffsets = 5;          // start of the 4 diagrams in /points, and the end
+
+
+h5::Datatype fixed_string(std::size_t bytes) {
+  h5::Datatype type(H5Tcopy(H5T_C_S1), "H5Tcopy");
+  check(H5Tset_size(type.get(), bytes), "H5Tset_size");
+  check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "H5Tset_strpad");
+  return type;
+}
+
+std::vector<char> padded(const std::string& text, std::size_t bytes) {
+  std::vector<char> out(bytes, '\0');
+  std::memcpy(out.data(), text.data(), std::min(text.size(), bytes));
+  return out;
+}
+
+std::vector<std::string> read_strings(hid_t file, const char* name, std::size_t bytes, const std::string& where) {
+  h5::Dataset set(H5Dopen2(file, name, H5P_DEFAULT), where + ": open " + name);
+  const std::size_t rows = h5::row_count(file, name, where);
+  std::vector<char> raw(rows * bytes);
+  const h5::Datatype type = fixed_string(bytes);
+  if (rows) check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()), where + ": read " + name);
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < rows; ++k) {
+    const char* begin = raw.data() + k * bytes;
+    out.emplace_back(begin, strnlen(begin, bytes));
+  }
+  return out;
+}
+
+h5::PropertyList latest_format() {
+  h5::PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");  // SWMR needs it
+  return fapl;
+}
+
+}  // namespace
+
+std::string run_id_problem(const std::string& run_id) {
+  if (run_id.empty()) return "run id is empty";
+  if (run_id.size() > 64) return "run id longer than 64 characters";
+  for (const char c : run_id)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'))
+      return "run id '" + run_id + "' has a character outside [A-Za-z0-9._-]";
+  if (run_id == "." || run_id == "..") return "run id '" + run_id + "' is not a name";
+  return {};
+}
+
+std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id) {
+  return data_dir / (run_id + ".h5");
+}
+
+StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& run_id) {
+  h5::quiet();
+  std::optional<StoredRun> previous;
+  if (std::filesystem::exists(path)) previous = read_store(path);  // throws if unreadable: never overwrite data
+  // A store is always written fresh: what an earlier writer left (perhaps killed mid-frame, its
+  // SWMR flag still set) is read back and copied, then the copy replaces it atomically.
+  const std::filesystem::path fresh = path.string() + ".new";
+  std::filesystem::remove(fresh);
+  {
+    const h5::PropertyList fapl = latest_format();
+    file_ = h5::File(H5Fcreate(fresh.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "create " + fresh.string());
+    h5::Group root(H5Gopen2(file_.get(), "/", H5P_DEFAULT), "open /");
+    h5::write_attribute(root.get(), "schema", std::string(kStoreSchema));
+    h5::write_attribute(root.get(), "run_id", run_id);
+    const hid_t f = file_.get();
+    h5::create_extendible(f, "announcements", fixed_string(kInfoBytes).get(), 0, 4);
+    h5::create_extendible(f, "frame", H5T_NATIVE_UINT32, 0, 256);
+    h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
+    for (const char* name : {"time", "rho", "z"}) h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
+    h5::create_extendible(f, "previous", H5T_NATIVE_INT64, 0, 256);
+    h5::create_extendible(f, "distances", H5T_NATIVE_DOUBLE, 12, 256);
+    h5::create_extendible(f, "counts", H5T_NATIVE_UINT64, kCounts, 256);
+    h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kOffsets, 256);
+    h5::create_extendible(f, "points", H5T_NATIVE_DOUBLE, 2, 8192);
+    h5::create_extendible(f, "rejected_frame", H5T_NATIVE_UINT32, 0, 64);
+    h5::create_extendible(f, "rejected_reason", fixed_string(kReasonBytes).get(), 0, 64);
+  }
+  for (const char* name : {"announcements", "frame", "step", "time", "rho", "z", "previous", "distances", "counts", "offsets",
+                           "points", "rejected_frame", "rejected_reason"})
+    sets_.emplace(name, h5::Dataset(H5Dopen2(file_.get(), name, H5P_DEFAULT), std::string("open ") + name));
+  // From here on the file stays valid for readers whatever happens to this process.
+  check(H5Fstart_swmr_write(file_.get()), "H5Fstart_swmr_write " + fresh.string());
+  if (previous) {
+    if (previous->has_info) write_info(previous->info);
+    for (const AnalyzedFrame& f : previous->frames) append(f);
+    for (const RejectedFrame& r : previous->rejected) append(r);
+  }
+  std::filesystem::rename(fresh, path);
+}
+
+hid_t StoreWriter::set(const char* name) const { return sets_.at(name).get(); }
+
+void StoreWriter::write_info(const RunInfo& info) {
+  nlohmann::json record = to_json(info);
+  record.erase("config");
+  record["config_json"] = info.config_json;
+  const std::string text = record.dump();
+  if (text.size() > kInfoBytes) throw h5::Error("run announcement longer than " + std::to_string(kInfoBytes) + " bytes");
+  const auto row = padded(text, kInfoBytes);
+  const h5::Datatype type = fixed_string(kInfoBytes);
+  h5::append_rows(set("announcements"), type.get(), row.data(), 1, 0);
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+}
+
+void StoreWriter::append(const AnalyzedFrame& f) {
+  const std::array<const Diagram*, 4> diagrams{&f.diagrams.normal.pd0, &f.diagrams.normal.pd1, &f.diagrams.tangential.pd0,
+                                               &f.diagrams.tangential.pd1};
+  std::array<std::uint64_t, kOffsets> offsets{};
+  offsets[0] = h5::row_count(file_.get(), "points", "store");
+  std::vector<double> points;
+  for (std::size_t d = 0; d < 4; ++d) {
+    for (const PersistencePoint& p : *diagrams[d]) points.insert(points.end(), {p.birth, p.death});
+    offsets[d + 1] = offsets[0] + points.size() / 2;
+  }
+  // Points first, the frame index last: a reader trusts a frame only once "frame" covers it.
+  h5::append_rows(set("points"), H5T_NATIVE_DOUBLE, points.data(), points.size() / 2, 2);
+  const std::array<std::uint64_t, kCounts> counts{f.diagrams.normal.vertices,     f.diagrams.normal.edges,
+                                                  f.diagrams.normal.triangles,    f.diagrams.tangential.vertices,
+                                                  f.diagrams.tangential.edges,    f.diagrams.tangential.triangles};
+  const std::int64_t previous = f.previous ? static_cast<std::int64_t>(*f.previous) : -1;
+  h5::append_rows(set("step"), H5T_NATIVE_UINT64, &f.header.step, 1, 0);
+  h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &f.header.time, 1, 0);
+  h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &f.header.rho, 1, 0);
+  h5::append_rows(set("z"), H5T_NATIVE_DOUBLE, &f.header.z, 1, 0);
+  h5::append_rows(set("previous"), H5T_NATIVE_INT64, &previous, 1, 0);
+  h5::append_rows(set("distances"), H5T_NATIVE_DOUBLE, f.distances.value.data(), 1, 12);
+  h5::append_rows(set("counts"), H5T_NATIVE_UINT64, counts.data(), 1, kCounts);
+  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+  h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &f.header.index, 1, 0);
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+}
+
+void StoreWriter::append(const RejectedFrame& r) {
+  const auto row = padded(r.reason, kReasonBytes);
+  const h5::Datatype type = fixed_string(kReasonBytes);
+  h5::append_rows(set("rejected_reason"), type.get(), row.data(), 1, 0);
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+  h5::append_rows(set("rejected_frame"), H5T_NATIVE_UINT32, &r.index, 1, 0);
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+}
+
+StoredRun read_store(const std::filesystem::path& path) {
+  h5::quiet();
+  const std::string file = path.string();
+  const h5::PropertyList fapl = latest_format();
+  // SWMR read opens a store whose writer is still running, or was killed.
+  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + file + " (not an HDF5 store?)");
+  h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
+  const std::string schema = h5::read_string(root.get(), "schema", file);
+  if (schema != kStoreSchema) throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "'");
+  StoredRun out;
+  out.info.run_id = h5::read_string(root.get(), "run_id", file);
+  const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
+  if (!announcements.empty()) {
+    try {
+      out.info = run_info_from_json(nlohmann::json::parse(announcements.back()));
+      out.has_info = true;
+    } catch (const nlohmann::json::exception& e) {
+      throw h5::Error(file + ": unreadable run announcement: " + e.what());
+    }
+  }
+  const hid_t g = f.get();
+  const auto frame = h5::read_uint32s(g, "frame", 0, file);
+  const auto step = h5::read_uint64s(g, "step", 0, file);
+  const auto time = h5::read_doubles(g, "time", 0, file);
+  const auto rho = h5::read_doubles(g, "rho", 0, file);
+  const auto z = h5::read_doubles(g, "z", 0, file);
+  const auto previous = h5::read_int64s(g, "previous", 0, file);
+  const auto distances = h5::read_doubles(g, "distances", 12, file);
+  const auto counts = h5::read_uint64s(g, "counts", kCounts, file);
+  const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
+  const auto points = h5::read_doubles(g, "points", 2, file);
+  // Committed frames: those every column covers (a killed writer may leave some columns longer).
+  std::size_t n = frame.size();
+  for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(), distances.size() / 12,
+                                counts.size() / kCounts, offsets.size() / kOffsets})
+    n = std::min(n, len);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint64_t* off = &offsets[k * kOffsets];
+    if (off[kOffsets - 1] > points.size() / 2) break;  // its points never reached the file
+    AnalyzedFrame a;
+    a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
+    if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
+    std::copy_n(&distances[k * 12], 12, a.distances.value.begin());
+    std::array<Diagram*, 4> diagrams{&a.diagrams.normal.pd0, &a.diagrams.normal.pd1, &a.diagrams.tangential.pd0,
+                                     &a.diagrams.tangential.pd1};
+    for (std::size_t d = 0; d < 4; ++d)
+      for (std::uint64_t p = off[d]; p < off[d + 1]; ++p) diagrams[d]->push_back({points[2 * p], points[2 * p + 1]});
+    const std::uint64_t* c = &counts[k * kCounts];
+    a.diagrams.normal.vertices = c[0], a.diagrams.normal.edges = c[1], a.diagrams.normal.triangles = c[2];
+    a.diagrams.tangential.vertices = c[3], a.diagrams.tangential.edges = c[4], a.diagrams.tangential.triangles = c[5];
+    out.frames.push_back(std::move(a));
+  }
+  const auto rejected_frame = h5::read_uint32s(g, "rejected_frame", 0, file);
+  const auto rejected_reason = read_strings(g, "rejected_reason", kReasonBytes, file);
+  for (std::size_t k = 0; k < std::min(rejected_frame.size(), rejected_reason.size()); ++k)
+    out.rejected.push_back({rejected_frame[k], rejected_reason[k]});
+  return out;
+}
+
+}  // namespace fnet

@@ -1,0 +1,67 @@
+// The analysis store: one HDF5 file per run holding its parameters, every analyzed frame's
+// diagrams and the distances to the previous accepted frame, and the rejected frames with their
+// reasons. Appended frame by frame by fnet-server, or offline by fnet-analyze store; read back on
+// restart. Schema: proto/store.md.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/analysis/frame_analysis.hpp"
+#include "common/store/hdf5_handle.hpp"
+#include "common/analysis/run_frame.hpp"
+
+namespace fnet {
+
+inline constexpr const char* kStoreSchema = "fnet-store-1";
+
+struct AnalyzedFrame {
+  FrameHeader header;
+  FrameDiagramSet diagrams;
+  std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
+  StepDistances distances;                // meaningful only with a previous frame
+};
+
+struct RejectedFrame {
+  std::uint32_t index = 0;
+  std::string reason;
+  bool operator==(const RejectedFrame&) const = default;
+};
+
+struct StoredRun {
+  RunInfo info;
+  bool has_info = false;  // false until the run's announcement was seen
+  std::vector<AnalyzedFrame> frames;  // ascending index
+  std::vector<RejectedFrame> rejected;
+};
+
+// Appends to a run's store in SWMR mode, so that the file stays readable (with read_store, or
+// h5py with swmr=True) while it is written and after the writer is killed.
+class StoreWriter {
+ public:
+  // Creates the store, or continues an existing one: its committed content is copied into a
+  // fresh file that replaces it (a store left by a killed writer cannot be reopened for writing).
+  StoreWriter(const std::filesystem::path& path, const std::string& run_id);
+  void write_info(const RunInfo& info);
+  void append(const AnalyzedFrame& frame);
+  void append(const RejectedFrame& rejected);
+
+ private:
+  hid_t set(const char* name) const;
+  h5::File file_;
+  std::map<std::string, h5::Dataset> sets_;  // declared after file_: closed before it
+};
+
+// Throws h5::Error naming the file and what is missing or malformed.
+StoredRun read_store(const std::filesystem::path& path);
+
+// Where a run's store lives in a data directory (run ids are restricted to [A-Za-z0-9._-]).
+std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id);
+// Empty when `run_id` is acceptable, else why not.
+std::string run_id_problem(const std::string& run_id);
+
+}  // namespace fnet

@@ -1,0 +1,44 @@
+// Small typed helpers over the HDF5 C API: scalar attributes and 1-D/2-D arrays, every failure
+// an h5::Error that names the object.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/store/hdf5_handle.hpp"
+
+namespace fnet::h5 {
+
+// Turns off HDF5's own error-stack printing: our exceptions carry the messages.
+void quiet();
+
+void write_attribute(hid_t obj, const char* name, double v);
+void write_attribute(hid_t obj, const char* name, std::uint32_t v);
+void write_attribute(hid_t obj, const char* name, std::uint64_t v);
+void write_attribute(hid_t obj, const char* name, const std::string& v);  // variable-length UTF-8
+
+double read_double(hid_t obj, const char* name, const std::string& where);
+std::uint32_t read_uint32(hid_t obj, const char* name, const std::string& where);
+std::uint64_t read_uint64(hid_t obj, const char* name, const std::string& where);
+std::string read_string(hid_t obj, const char* name, const std::string& where);
+
+// rows x cols (cols == 0: a 1-D array of rows); zero rows are allowed.
+void write_array(hid_t group, const char* name, const std::vector<double>& data, std::size_t rows, std::size_t cols);
+void write_array(hid_t group, const char* name, const std::vector<std::uint32_t>& data, std::size_t rows, std::size_t cols);
+std::vector<double> read_doubles(hid_t group, const char* name, std::size_t cols, const std::string& where);
+std::vector<std::uint32_t> read_uint32s(hid_t group, const char* name, std::size_t cols, const std::string& where);
+std::vector<std::uint64_t> read_uint64s(hid_t group, const char* name, std::size_t cols, const std::string& where);
+std::vector<std::int64_t> read_int64s(hid_t group, const char* name, std::size_t cols, const std::string& where);
+
+// Extendible datasets (rows x cols, cols == 0 for 1-D), the only kind SWMR can grow.
+void create_extendible(hid_t loc, const char* name, hid_t type, std::size_t cols, std::size_t chunk_rows);
+// Appends `rows` rows (row-major) to an open extendible dataset.
+void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, std::size_t cols);
+// The number of rows of a dataset.
+std::size_t row_count(hid_t loc, const char* name, const std::string& where);
+
+// Names of the links in a group, in name order.
+std::vector<std::string> member_names(hid_t group, const std::string& where);
+
+}  // namespace fnet::h5

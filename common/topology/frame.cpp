@@ -1,0 +1,80 @@
+#include "common/topology/frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace fnet {
+namespace {
+
+[[noreturn]] void reject(const Frame& frame, const std::string& what) {
+  throw FrameError(frame.label.empty() ? what : frame.label + ": " + what);
+}
+
+std::string describe(const Contact& c, std::size_t row) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "contact " << row << " (i=" << c.i << ", j=" << c.j << ", fn=" << c.fn << ", ft=" << c.ft << ")";
+  return s.str();
+}
+
+}  // namespace
+
+std::size_t implied_particle_count(const std::vector<Contact>& contacts) {
+  std::int64_t largest = -1;
+  for (const Contact& c : contacts) largest = std::max({largest, c.i, c.j});
+  return largest < 0 ? 0 : static_cast<std::size_t>(largest) + 1;  // unsigned: no overflow at INT64_MAX
+}
+
+void validate(const Frame& frame) {
+  if (frame.particle_count > std::size_t{UINT32_MAX}) {
+    // Without a particle table the count came from a contact: name it.
+    for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
+      const Contact& c = frame.contacts[k];
+      if (std::max(c.i, c.j) >= std::int64_t{UINT32_MAX})
+        reject(frame, describe(c, k) + ": particle index exceeds the largest supported, 2^32 - 2");
+    }
+    reject(frame, "particle count " + std::to_string(frame.particle_count) + " exceeds 2^32 - 1");
+  }
+  if (!frame.particles.empty() && frame.particles.size() != frame.particle_count)
+    reject(frame, "particle table has " + std::to_string(frame.particles.size()) +
+                      " rows but the frame declares " + std::to_string(frame.particle_count) + " particles");
+
+  for (std::size_t k = 0; k < frame.particles.size(); ++k) {
+    const Particle& p = frame.particles[k];
+    const auto where = [&] {
+      std::ostringstream s;
+      s.precision(17);
+      s << "particle " << k << " (x=" << p.x << ", y=" << p.y << ", r=" << p.r << ")";
+      return s.str();
+    };
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.r))
+      reject(frame, where() + ": non-finite value");
+    if (p.r < 0) reject(frame, where() + ": negative radius");
+  }
+
+  const auto n = static_cast<std::int64_t>(frame.particle_count);
+  std::vector<std::pair<std::uint64_t, std::size_t>> pairs;  // (min<<32 | max, row)
+  pairs.reserve(frame.contacts.size());
+  for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
+    const Contact& c = frame.contacts[k];
+    if (!std::isfinite(c.fn) || !std::isfinite(c.ft)) reject(frame, describe(c, k) + ": non-finite force");
+    if (c.i < 0 || c.j < 0 || c.i >= n || c.j >= n)
+      reject(frame, describe(c, k) + ": particle index out of range [0, " + std::to_string(n) + ")");
+    if (c.i == c.j) reject(frame, describe(c, k) + ": self-contact");
+    const auto lo = static_cast<std::uint64_t>(std::min(c.i, c.j));
+    const auto hi = static_cast<std::uint64_t>(std::max(c.i, c.j));
+    pairs.emplace_back(lo << 32 | hi, k);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (std::size_t k = 1; k < pairs.size(); ++k) {
+    if (pairs[k].first != pairs[k - 1].first) continue;
+    const std::size_t first = std::min(pairs[k - 1].second, pairs[k].second);
+    const std::size_t second = std::max(pairs[k - 1].second, pairs[k].second);
+    reject(frame, describe(frame.contacts[second], second) + ": duplicate of contact " + std::to_string(first) +
+                      " (same pair of particles)");
+  }
+}
+
+}  // namespace fnet

@@ -1,0 +1,224 @@
+#include "common/transport/frame_transport.hpp"
+
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <thread>
+
+#include "fnet.h"
+
+namespace fnet::dds {
+namespace {
+
+void set_bounded(char* dst, std::size_t capacity, const std::string& value, const char* field) {
+  if (value.size() > capacity) throw std::invalid_argument(std::string(field) + " longer than " + std::to_string(capacity) + " bytes");
+  std::memcpy(dst, value.data(), value.size());
+  dst[value.size()] = '\0';
+}
+
+void set_qos(Qos& qos, bool writer, std::int32_t max_samples) {
+  dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+  dds_qset_history(qos.get(), DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_durability(qos.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  if (writer) {
+    // Late readers are served from the durability service's history, not the writer's.
+    dds_qset_durability_service(qos.get(), 0, DDS_HISTORY_KEEP_ALL, 0, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
+                                DDS_LENGTH_UNLIMITED);
+  } else {
+    dds_qset_resource_limits(qos.get(), max_samples, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  }
+}
+
+template <class Seq, class T>
+Seq borrow(std::vector<T>& values) {
+  Seq seq{};
+  seq._maximum = seq._length = static_cast<std::uint32_t>(values.size());
+  seq._buffer = values.data();
+  seq._release = false;  // dds_write copies; the vector keeps ownership
+  return seq;
+}
+
+RunFrame decode(const fnet_ForceFrame& s) {
+  RunFrame out;
+  out.header = {s.run_id, s.frame, s.step, s.time, s.rho, s.z};
+  Frame& f = out.frame;
+  f.label = frame_label(out.header.run_id, s.frame);
+  f.particle_count = s.particle_count;
+  const auto bad = [&](const std::string& what) { return FrameError(f.label + ": " + what); };
+  if (s.particles._length % 3 != 0) throw bad("particle array length " + std::to_string(s.particles._length) + " is not a multiple of 3");
+  if (s.contact_pairs._length % 2 != 0 || s.contact_forces._length != s.contact_pairs._length)
+    throw bad("contact arrays disagree: " + std::to_string(s.contact_pairs._length) + " indices, " +
+              std::to_string(s.contact_forces._length) + " forces (expected 2 per contact each)");
+  if (s.wall_contact_forces._length != 2 * s.wall_contact_particles._length)
+    throw bad("wall contact arrays disagree: " + std::to_string(s.wall_contact_particles._length) + " particles, " +
+              std::to_string(s.wall_contact_forces._length) + " forces");
+  f.particles.resize(s.particles._length / 3);
+  for (std::size_t k = 0; k < f.particles.size(); ++k)
+    f.particles[k] = {s.particles._buffer[3 * k], s.particles._buffer[3 * k + 1], s.particles._buffer[3 * k + 2]};
+  f.contacts.resize(s.contact_pairs._length / 2);
+  for (std::size_t k = 0; k < f.contacts.size(); ++k)
+    f.contacts[k] = {s.contact_pairs._buffer[2 * k], s.contact_pairs._buffer[2 * k + 1], s.contact_forces._buffer[2 * k],
+                     s.contact_forces._buffer[2 * k + 1]};
+  out.wall_contacts.resize(s.wall_contact_particles._length);
+  for (std::size_t k = 0; k < out.wall_contacts.size(); ++k)
+    out.wall_contacts[k] = {s.wall_contact_particles._buffer[k], s.wall_contact_forces._buffer[2 * k],
+                            s.wall_contact_forces._buffer[2 * k + 1]};
+  return out;
+}
+
+RunInfo decode(const fnet_RunInfo& s) {
+  return {s.run_id,      s.particles,         s.polydispersity, s.friction,      s.k_n,    s.restitution, s.kt_over_kn,
+          s.compression_speed, s.dt, s.final_density, s.frames, s.seed, s.config_json};
+}
+
+// Takes everything available from `reader` as loans, decoding each valid sample.
+template <class Sample, class Sink>
+void take_all(dds_entity_t reader, std::size_t max_samples, Sink sink) {
+  constexpr std::size_t kBatch = 64;
+  void* samples[kBatch];
+  dds_sample_info_t infos[kBatch];
+  std::size_t taken = 0;
+  while (taken < max_samples) {
+    samples[0] = nullptr;
+    const std::size_t want = std::min(kBatch, max_samples - taken);
+    const dds_return_t n = dds_take(reader, samples, infos, want, static_cast<std::uint32_t>(want));
+    if (n < 0) throw Error("dds_take", n);
+    if (n == 0) return;
+    for (dds_return_t k = 0; k < n; ++k)
+      if (infos[k].valid_data) {  // disposals and unregistrations carry no data
+        sink(*static_cast<const Sample*>(samples[k]));
+        ++taken;
+      }
+    dds_return_loan(reader, samples, n);
+  }
+}
+
+}  // namespace
+
+FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blocking)
+    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
+  const dds_entity_t info_topic =
+      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr), "dds_create_topic(RunInfo)");
+  const dds_entity_t frame_topic = check(
+      dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr), "dds_create_topic(ForceFrame)");
+  Qos qos;
+  set_qos(qos, true, DDS_LENGTH_UNLIMITED);
+  dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, max_blocking);
+  info_writer_ = check(dds_create_writer(participant_.get(), info_topic, qos.get(), nullptr), "dds_create_writer(RunInfo)");
+  frame_writer_ = check(dds_create_writer(participant_.get(), frame_topic, qos.get(), nullptr), "dds_create_writer(ForceFrame)");
+}
+
+void FramePublisher::publish(const RunInfo& info) {
+  fnet_RunInfo s{};
+  set_bounded(s.run_id, sizeof s.run_id - 1, info.run_id, "run_id");
+  set_bounded(s.config_json, sizeof s.config_json - 1, info.config_json, "config_json");
+  s.particles = info.particles;
+  s.polydispersity = info.polydispersity;
+  s.friction = info.friction;
+  s.k_n = info.k_n;
+  s.restitution = info.restitution;
+  s.kt_over_kn = info.kt_over_kn;
+  s.compression_speed = info.compression_speed;
+  s.dt = info.dt;
+  s.final_density = info.final_density;
+  s.frames = info.frames;
+  s.seed = info.seed;
+  const dds_return_t rc = dds_write(info_writer_, &s);
+  if (rc != DDS_RETCODE_OK) throw Error("dds_write(RunInfo)", rc);
+}
+
+void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
+  const Frame& f = frame.frame;
+  std::vector<double> particles(3 * f.particles.size());
+  for (std::size_t k = 0; k < f.particles.size(); ++k) {
+    particles[3 * k] = f.particles[k].x;
+    particles[3 * k + 1] = f.particles[k].y;
+    particles[3 * k + 2] = f.particles[k].r;
+  }
+  std::vector<std::uint32_t> pairs(2 * f.contacts.size());
+  std::vector<double> forces(2 * f.contacts.size());
+  for (std::size_t k = 0; k < f.contacts.size(); ++k) {
+    pairs[2 * k] = static_cast<std::uint32_t>(f.contacts[k].i);
+    pairs[2 * k + 1] = static_cast<std::uint32_t>(f.contacts[k].j);
+    forces[2 * k] = f.contacts[k].fn;
+    forces[2 * k + 1] = f.contacts[k].ft;
+  }
+  std::vector<std::uint32_t> wall_particles(frame.wall_contacts.size());
+  std::vector<double> wall_forces(2 * frame.wall_contacts.size());
+  for (std::size_t k = 0; k < frame.wall_contacts.size(); ++k) {
+    wall_particles[k] = frame.wall_contacts[k].particle;
+    wall_forces[2 * k] = frame.wall_contacts[k].fn;
+    wall_forces[2 * k + 1] = frame.wall_contacts[k].ft;
+  }
+  fnet_ForceFrame s{};
+  set_bounded(s.run_id, sizeof s.run_id - 1, frame.header.run_id, "run_id");
+  s.frame = frame.header.index;
+  s.step = frame.header.step;
+  s.time = frame.header.time;
+  s.rho = frame.header.rho;
+  s.z = frame.header.z;
+  s.particle_count = static_cast<std::uint32_t>(f.particle_count);
+  s.particles = borrow<dds_sequence_double>(particles);
+  s.contact_pairs = borrow<dds_sequence_uint32>(pairs);
+  s.contact_forces = borrow<dds_sequence_double>(forces);
+  s.wall_contact_particles = borrow<dds_sequence_uint32>(wall_particles);
+  s.wall_contact_forces = borrow<dds_sequence_double>(wall_forces);
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(give_up);
+  while (true) {
+    const dds_return_t rc = dds_write(frame_writer_, &s);
+    if (rc == DDS_RETCODE_OK) return;
+    // A write that timed out on a full reader is not queued: retry until the reader drains.
+    if (rc != DDS_RETCODE_TIMEOUT || std::chrono::steady_clock::now() > deadline)
+      throw Error("dds_write(ForceFrame) " + frame_label(frame.header.run_id, frame.header.index), rc);
+  }
+}
+
+std::uint32_t FramePublisher::matched_frame_readers() const {
+  dds_publication_matched_status_t status{};
+  check(dds_get_publication_matched_status(frame_writer_, &status), "dds_get_publication_matched_status");
+  return status.current_count;
+}
+
+bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
+  const dds_return_t a = dds_wait_for_acks(info_writer_, timeout);
+  const dds_return_t b = dds_wait_for_acks(frame_writer_, timeout);
+  return a == DDS_RETCODE_OK && b == DDS_RETCODE_OK;
+}
+
+FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_buffered)
+    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
+  const dds_entity_t info_topic =
+      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr), "dds_create_topic(RunInfo)");
+  const dds_entity_t frame_topic = check(
+      dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr), "dds_create_topic(ForceFrame)");
+  Qos info_qos, frame_qos;
+  set_qos(info_qos, false, DDS_LENGTH_UNLIMITED);
+  set_qos(frame_qos, false, max_frames_buffered);
+  info_reader_ = check(dds_create_reader(participant_.get(), info_topic, info_qos.get(), nullptr), "dds_create_reader(RunInfo)");
+  frame_reader_ = check(dds_create_reader(participant_.get(), frame_topic, frame_qos.get(), nullptr), "dds_create_reader(ForceFrame)");
+  waitset_ = check(dds_create_waitset(participant_.get()), "dds_create_waitset");
+  for (const dds_entity_t reader : {info_reader_, frame_reader_}) {
+    const dds_entity_t cond = check(dds_create_readcondition(reader, DDS_ANY_STATE), "dds_create_readcondition");
+    const dds_return_t rc = dds_waitset_attach(waitset_, cond, reader);
+    if (rc != DDS_RETCODE_OK) throw Error("dds_waitset_attach", rc);
+  }
+}
+
+Received FrameSubscriber::take(dds_duration_t timeout, std::size_t max_frames) {
+  const dds_return_t rc = dds_waitset_wait(waitset_, nullptr, 0, timeout);
+  if (rc < 0) throw Error("dds_waitset_wait", rc);
+  Received out;
+  // Announcements first; a frame may still precede its run's announcement (separate topics).
+  take_all<fnet_RunInfo>(info_reader_, SIZE_MAX, [&](const fnet_RunInfo& s) { out.infos.push_back(decode(s)); });
+  take_all<fnet_ForceFrame>(frame_reader_, max_frames, [&](const fnet_ForceFrame& s) {
+    try {
+      out.frames.push_back(decode(s));
+    } catch (const FrameError& e) {
+      out.malformed.emplace_back(e.what());
+    }
+  });
+  return out;
+}
+
+}  // namespace fnet::dds

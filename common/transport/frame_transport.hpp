@@ -1,0 +1,59 @@
+// Frames and run announcements over Cyclone DDS: topics "fnet_RunInfo" and "fnet_ForceFrame",
+// both keyed by run_id, with the QoS that loses nothing (reliable, keep-all, transient-local with
+// a keep-all durability service so that a reader joining after the run still gets every frame).
+#pragma once
+
+#include <dds/dds.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "common/transport/dds_entity.hpp"
+#include "common/analysis/run_frame.hpp"
+
+namespace fnet::dds {
+
+inline constexpr const char* kRunInfoTopic = "fnet_RunInfo";
+inline constexpr const char* kFrameTopic = "fnet_ForceFrame";
+
+class FramePublisher {
+ public:
+  // max_blocking: how long one write may wait for a slow reader's resource limits before it is
+  // retried (a timed-out write is not queued by DDS).
+  explicit FramePublisher(dds_domainid_t domain = DDS_DOMAIN_DEFAULT, dds_duration_t max_blocking = DDS_SECS(1));
+
+  void publish(const RunInfo& info);
+  // Retries a write that timed out until `give_up` has passed; throws dds::Error then.
+  void publish(const RunFrame& frame, dds_duration_t give_up = DDS_SECS(600));
+
+  std::uint32_t matched_frame_readers() const;
+  // Blocks until every matched reader acknowledged everything written, or timeout; true if all did.
+  bool wait_for_acks(dds_duration_t timeout) const;
+
+ private:
+  Entity participant_;
+  dds_entity_t info_writer_ = 0, frame_writer_ = 0;
+};
+
+struct Received {
+  std::vector<RunInfo> infos;
+  std::vector<RunFrame> frames;
+  std::vector<std::string> malformed;  // samples that could not be decoded, with the reason
+};
+
+class FrameSubscriber {
+ public:
+  // max_frames_buffered: DDS resource limit on frames held by this reader before the writer waits
+  // (DDS_LENGTH_UNLIMITED for none).
+  explicit FrameSubscriber(dds_domainid_t domain = DDS_DOMAIN_DEFAULT,
+                           std::int32_t max_frames_buffered = DDS_LENGTH_UNLIMITED);
+
+  // Waits up to `timeout` for data, then takes everything available (at most max_frames frames).
+  Received take(dds_duration_t timeout, std::size_t max_frames = SIZE_MAX);
+
+ private:
+  Entity participant_;
+  dds_entity_t info_reader_ = 0, frame_reader_ = 0, waitset_ = 0;
+};
+
+}  // namespace fnet::dds

@@ -1,0 +1,161 @@
+// The CSV reader: what it accepts (any column order, extra columns, CRLF) and how it refuses
+// (every error names the file and, where a line is at fault, the line).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/codec/frame_csv.hpp"
+#include "common/codec/run_csv.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fnet {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using fnet::testing::TempDir;
+
+template <class Read>
+std::string csv_error(Read read) {
+  try {
+    read();
+  } catch (const CsvError& e) {
+    return e.what();
+  }
+  return "<accepted>";
+}
+
+// path:line, as the reader prefixes messages about one line.
+std::string at(const std::filesystem::path& file, int line) { return file.string() + ":" + std::to_string(line) + ":"; }
+
+bool same_contact(const Contact& a, const Contact& b) { return a.i == b.i && a.j == b.j && a.fn == b.fn && a.ft == b.ft; }
+
+TEST(FrameCsv, ReadsContactsAndParticles) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fn,ft\n0,1,1.5,0.25\n2,1,-0.125,0\n");
+  const auto particles = dir.write("p.csv", "id,x,y,r\n2,5,6,0.5\n0,1,2,0.4\n1,3,4,0.6\n3,7,8,0.45\n");
+  const Frame f = read_frame_csv(contacts, particles);
+  EXPECT_EQ(f.label, contacts.string());
+  EXPECT_EQ(f.particle_count, 4u);
+  ASSERT_EQ(f.contacts.size(), 2u);
+  EXPECT_TRUE(same_contact(f.contacts[0], {0, 1, 1.5, 0.25}));
+  EXPECT_TRUE(same_contact(f.contacts[1], {2, 1, -0.125, 0}));
+  ASSERT_EQ(f.particles.size(), 4u);  // rows land at their id, whatever the row order
+  EXPECT_EQ(f.particles[0].x, 1);
+  EXPECT_EQ(f.particles[2].r, 0.5);
+  EXPECT_EQ(f.particles[3].y, 8);
+}
+
+TEST(FrameCsv, WithoutParticlesTheCountIsTheLargestIndexPlusOne) {
+  TempDir dir;
+  const Frame f = read_frame_csv(dir.write("c.csv", "i,j,fn,ft\n3,9,1,1\n4,2,1,1\n"), std::nullopt);
+  EXPECT_EQ(f.particle_count, 10u);
+  EXPECT_TRUE(f.particles.empty());
+}
+
+TEST(FrameCsv, ColumnsInAnotherOrderAndExtraColumnsWork) {
+  TempDir dir;
+  const auto contacts = read_contacts_csv(dir.write("c.csv", "ft,extra,j,fn,i\n0.25,x,1,1.5,0\n0,y,7,-2,3\n"));
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_TRUE(same_contact(contacts[0], {0, 1, 1.5, 0.25}));
+  EXPECT_TRUE(same_contact(contacts[1], {3, 7, -2, 0}));
+  const auto particles = read_particles_csv(dir.write("p.csv", "r,y,x,id\n0.5,2,1,1\n0.25,4,3,0\n"));
+  ASSERT_EQ(particles.size(), 2u);
+  EXPECT_EQ(particles[0].x, 3);
+  EXPECT_EQ(particles[0].y, 4);
+  EXPECT_EQ(particles[0].r, 0.25);
+  EXPECT_EQ(particles[1].r, 0.5);
+}
+
+TEST(FrameCsv, CrlfLineEndingsWork) {
+  TempDir dir;
+  const auto contacts = read_contacts_csv(dir.write("c.csv", "i,j,fn,ft\r\n0,1,1.5,0.25\r\n2,1,-0.125,3\r\n"));
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_TRUE(same_contact(contacts[1], {2, 1, -0.125, 3}));  // the last field would carry '\r'
+  const auto particles = read_particles_csv(dir.write("p.csv", "id,x,y,r\r\n1,3,4,0.6\r\n0,1,2,0.4\r\n"));
+  ASSERT_EQ(particles.size(), 2u);
+  EXPECT_EQ(particles[1].r, 0.6);
+}
+
+TEST(FrameCsv, MissingFileNamesTheFile) {
+  TempDir dir;
+  const auto missing = dir.path() / "no_such_contacts.csv";
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(missing); }), AllOf(HasSubstr(missing.string()), HasSubstr("cannot open")));
+  EXPECT_THAT(csv_error([&] { read_frame_csv(dir.write("c.csv", "i,j,fn,ft\n"), dir.path() / "no_p.csv"); }),
+              HasSubstr((dir.path() / "no_p.csv").string()));
+}
+
+TEST(FrameCsv, MissingHeaderColumnNamesFileLineAndColumn) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fn\n0,1,2\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(contacts); }), AllOf(HasSubstr(at(contacts, 1)), HasSubstr("'ft'")));
+  const auto particles = dir.write("p.csv", "\nid,x,r\n0,1,2\n");  // a blank first line: the header is line 2
+  EXPECT_THAT(csv_error([&] { read_particles_csv(particles); }), AllOf(HasSubstr(at(particles, 2)), HasSubstr("'y'")));
+}
+
+TEST(FrameCsv, NonNumericFieldNamesFileLineColumnAndText) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fn,ft\n0,1,1,1\n1,2,abc,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(contacts); }),
+              AllOf(HasSubstr(at(contacts, 3)), HasSubstr("'fn'"), HasSubstr("'abc'")));
+  const auto fractional_index = dir.write("c2.csv", "i,j,fn,ft\n0,1.5,1,1\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(fractional_index); }),
+              AllOf(HasSubstr(at(fractional_index, 2)), HasSubstr("'j'"), HasSubstr("'1.5'")));
+  const auto empty_field = dir.write("p.csv", "id,x,y,r\n0,1,,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(empty_field); }), AllOf(HasSubstr(at(empty_field, 2)), HasSubstr("'y'")));
+  const auto trailing = dir.write("p2.csv", "id,x,y,r\n0,1,2,0.5x\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(trailing); }), AllOf(HasSubstr(at(trailing, 2)), HasSubstr("'r'")));
+}
+
+// An exported run folder whose index has a non-numeric field: the message quotes the whole row.
+TEST(RunCsv, BadIndexRowIsQuotedWhole) {
+  TempDir dir;
+  const auto index = dir.write("index.csv", "frame,step,time,rho,Z\n0,12,abc,0.5,4\n");
+  EXPECT_THAT(csv_error([&] { read_csv_run(dir.path(), "r"); }),
+              AllOf(HasSubstr(at(index, 2)), HasSubstr("'0,12,abc,0.5,4'")));
+}
+
+// A '+' may lead a number; a second sign after it does not make one.
+TEST(FrameCsv, PlusFollowedByMinusIsNotANumber) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fn,ft\n0,1,+-2,1\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(contacts); }), AllOf(HasSubstr(at(contacts, 2)), HasSubstr("'fn'")));
+  const auto index = dir.write("c2.csv", "i,j,fn,ft\n+-1,1,2,1\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(index); }), AllOf(HasSubstr(at(index, 2)), HasSubstr("'i'")));
+}
+
+TEST(FrameCsv, WrongFieldCountNamesFileAndLine) {
+  TempDir dir;
+  const auto few = dir.write("c.csv", "i,j,fn,ft\n0,1,1,1\n1,2,3\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(few); }), AllOf(HasSubstr(at(few, 3)), HasSubstr("expected 4 fields, found 3")));
+  const auto many = dir.write("p.csv", "id,x,y,r\n0,1,2,3,4\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(many); }), AllOf(HasSubstr(at(many, 2)), HasSubstr("found 5")));
+}
+
+TEST(FrameCsv, EmptyFileIsAnError) {
+  TempDir dir;
+  const auto empty = dir.write("c.csv", "");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(empty); }), AllOf(HasSubstr(empty.string()), HasSubstr("no header")));
+}
+
+// The header of frame_csv.hpp promises "Errors name the file and line" for every error.
+TEST(FrameCsv, DuplicateParticleIdNamesFileAndLine) {
+  TempDir dir;
+  const auto particles = dir.write("p.csv", "id,x,y,r\n0,1,2,0.5\n1,3,4,0.5\n0,5,6,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(particles); }),
+              AllOf(HasSubstr(particles.string()), HasSubstr("id 0"), HasSubstr(at(particles, 4))));
+}
+
+TEST(FrameCsv, ParticleIdOutOfRangeNamesFileAndLine) {
+  TempDir dir;
+  const auto too_large = dir.write("p.csv", "id,x,y,r\n0,1,2,0.5\n3,3,4,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(too_large); }),
+              AllOf(HasSubstr(too_large.string()), HasSubstr("id 3"), HasSubstr(at(too_large, 3))));
+  const auto negative = dir.write("p2.csv", "id,x,y,r\n-1,1,2,0.5\n0,3,4,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(negative); }),
+              AllOf(HasSubstr(negative.string()), HasSubstr("id -1"), HasSubstr(at(negative, 2))));
+}
+
+}  // namespace
+}  // namespace fnet
