@@ -1,6 +1,4 @@
 // fnetctl: the command-line client of fnet-server.
-#include <boost/program_options.hpp>
-
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -12,6 +10,8 @@
 #include <memory>
 #include <sstream>
 #include <thread>
+
+#include <boost/program_options.hpp>
 
 #include "client/rpc_client.hpp"
 #include "proto/json_rpc.hpp"
@@ -77,9 +77,11 @@ struct Common {
         "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
         "force", po::value(&force)->default_value("normal"), "normal or tangential force network");
     if (with_metric)
-      o.add_options()("metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2 or wasserstein")(
+      o.add_options()("metric", po::value(&metric)->required(),
+                      "bottleneck, wasserstein1, wasserstein2 or wasserstein")(
           "q", po::value(&q), "exponent q >= 1 for --metric wasserstein")(
-          "essential", po::value(&essential)->default_value("floor"), "never-dying classes: floor, sentinel or separate");
+          "essential", po::value(&essential)->default_value("floor"),
+          "never-dying classes: floor, sentinel or separate");
   }
   json params() const {
     json p = {{"dim", dim}, {"force", force}};
@@ -93,7 +95,8 @@ struct Common {
   }
 };
 
-bool parse(po::options_description& o, const std::vector<std::string>& args, po::positional_options_description* pos = nullptr) {
+bool parse(po::options_description& o, const std::vector<std::string>& args,
+           po::positional_options_description* pos = nullptr) {
   po::variables_map vm;
   auto parser = po::command_line_parser(args).options(o);
   if (pos) parser.positional(*pos);
@@ -125,9 +128,10 @@ int cmd_runs(Connection& rpc, const std::vector<std::string>& args) {
   }
   std::printf("%-24s %7s %8s %8s %9s %7s %9s\n", "run", "frames", "rejected", "pending", "rho", "Z", "idle(s)");
   for (const json& run : r["runs"])
-    std::printf("%-24s %7zu %8zu %8zu %9s %7s %9.1f\n", run["run"].get<std::string>().c_str(), run["frames"].get<std::size_t>(),
-                run["rejected"].get<std::size_t>(), run["pending"].get<std::size_t>(), number(run["rho"], 5).c_str(),
-                number(run["z"], 4).c_str(), run["seconds_since_last_frame"].get<double>());
+    std::printf("%-24s %7zu %8zu %8zu %9s %7s %9.1f\n", run["run"].get<std::string>().c_str(),
+                run["frames"].get<std::size_t>(), run["rejected"].get<std::size_t>(), run["pending"].get<std::size_t>(),
+                number(run["rho"], 5).c_str(), number(run["z"], 4).c_str(),
+                run["seconds_since_last_frame"].get<double>());
   return kOk;
 }
 
@@ -149,19 +153,24 @@ int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
     return kOk;
   }
   const bool csv = c.format == "csv";
-  if (csv) std::cout << "frame,rho,z,value\n";
+  if (csv)
+    std::cout << "frame,rho,z,value\n";
   else
     std::cout << "run " << r["run"].get<std::string>() << ", " << r["metric"].get<std::string>()
-              << (r.contains("q") && r["metric"] == "wasserstein" ? " q=" + number(r["q"]) : "") << ", PD" << r["dim"].get<int>()
-              << ", " << r["force"].get<std::string>() << " forces, essential=" << r["essential"].get<std::string>()
+              << (r.contains("q") && r["metric"] == "wasserstein" ? " q=" + number(r["q"]) : "") << ", PD"
+              << r["dim"].get<int>() << ", " << r["force"].get<std::string>()
+              << " forces, essential=" << r["essential"].get<std::string>()
               << "; value[k] = distance from the previous frame\n"
-              << std::setw(7) << "frame" << std::setw(11) << "rho" << std::setw(9) << "Z" << std::setw(14) << "value" << "\n";
+              << std::setw(7) << "frame" << std::setw(11) << "rho" << std::setw(9) << "Z" << std::setw(14) << "value"
+              << "\n";
   for (std::size_t k = 0; k < r["frame"].size(); ++k) {
     const std::string value = r["value"][k].is_null() ? (csv ? "" : "-") : number(r["value"][k], 8);
-    if (csv) std::cout << r["frame"][k] << "," << number(r["rho"][k], 8) << "," << number(r["z"][k], 6) << "," << value << "\n";
+    if (csv)
+      std::cout << r["frame"][k] << "," << number(r["rho"][k], 8) << "," << number(r["z"][k], 6) << "," << value
+                << "\n";
     else
-      std::cout << std::setw(7) << r["frame"][k].get<std::uint32_t>() << std::setw(11) << number(r["rho"][k], 6) << std::setw(9)
-                << number(r["z"][k], 4) << std::setw(14) << value << "\n";
+      std::cout << std::setw(7) << r["frame"][k].get<std::uint32_t>() << std::setw(11) << number(r["rho"][k], 6)
+                << std::setw(9) << number(r["z"][k], 4) << std::setw(14) << value << "\n";
   }
   return kOk;
 }
@@ -183,8 +192,9 @@ int cmd_diagram(Connection& rpc, const std::vector<std::string>& args) {
     return kOk;
   }
   if (c.format == "table")
-    std::cout << "run " << r["run"].get<std::string>() << " frame " << frame << " (rho " << number(r["rho"]) << "), PD" << c.dim
-              << " of the " << c.force << " force network: " << r["points"].size() << " points (death -1: never dies)\n";
+    std::cout << "run " << r["run"].get<std::string>() << " frame " << frame << " (rho " << number(r["rho"]) << "), PD"
+              << c.dim << " of the " << c.force << " force network: " << r["points"].size()
+              << " points (death -1: never dies)\n";
   std::cout << (c.format == "csv" ? "birth,death\n" : "");
   for (const json& pt : r["points"])
     std::cout << number(pt[0], 10) << (c.format == "csv" ? "," : "\t") << number(pt[1], 10) << "\n";
@@ -198,8 +208,9 @@ int cmd_distance(Connection& rpc, const std::vector<std::string>& args) {
   std::uint32_t frame = 0, other = 0;
   std::string other_run;
   double delta = 0;
-  o.add_options()("frame", po::value(&frame)->required(), "first frame")("other-frame", po::value(&other)->required(), "second frame")(
-      "other-run", po::value(&other_run), "run of the second frame (default: the first's)")(
+  o.add_options()("frame", po::value(&frame)->required(), "first frame")(
+      "other-frame", po::value(&other)->required(), "second frame")("other-run", po::value(&other_run),
+                                                                    "run of the second frame (default: the first's)")(
       "delta", po::value(&delta)->default_value(0), "0: exact; > 0: certified relative accuracy");
   if (!parse(o, args)) return kOk;
   json p = c.params();
@@ -225,12 +236,14 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
   const json& f = s["frames"];
   std::printf("uptime %.0f s, %zu run(s), %zu connection(s), %zu subscription(s)\n", s["uptime_seconds"].get<double>(),
               s["runs"].size(), s["connections"].get<std::size_t>(), s["subscriptions"].get<std::size_t>());
-  std::printf("frames: %zu received, %zu analyzed, %zu rejected, %zu duplicates, %zu late, %zu skipped, %zu malformed\n",
-              f["received"].get<std::size_t>(), f["analyzed"].get<std::size_t>(), f["rejected"].get<std::size_t>(),
-              f["duplicates"].get<std::size_t>(), f["late"].get<std::size_t>(), f["skipped"].get<std::size_t>(),
-              f["malformed"].get<std::size_t>());
-  std::printf("rate %.1f frames/s; lag: %zu frame(s) in flight, oldest waiting %.2f s\n", s["frames_per_second"].get<double>(),
-              s["lag"]["frames_in_flight"].get<std::size_t>(), s["lag"]["oldest_pending_seconds"].get<double>());
+  std::printf(
+      "frames: %zu received, %zu analyzed, %zu rejected, %zu duplicates, %zu late, %zu skipped, %zu malformed\n",
+      f["received"].get<std::size_t>(), f["analyzed"].get<std::size_t>(), f["rejected"].get<std::size_t>(),
+      f["duplicates"].get<std::size_t>(), f["late"].get<std::size_t>(), f["skipped"].get<std::size_t>(),
+      f["malformed"].get<std::size_t>());
+  std::printf("rate %.1f frames/s; lag: %zu frame(s) in flight, oldest waiting %.2f s\n",
+              s["frames_per_second"].get<double>(), s["lag"]["frames_in_flight"].get<std::size_t>(),
+              s["lag"]["oldest_pending_seconds"].get<double>());
   for (const json& reason : s["rejections"]) std::cout << "  rejected: " << reason.get<std::string>() << "\n";
   return kOk;
 }
@@ -257,11 +270,13 @@ int cmd_watch(const std::string& host, unsigned short port, const std::vector<st
   c.add(o, false);
   std::string metric = "wasserstein2";
   bool plain = false, until_complete = false;
-  o.add_options()("metric", po::value(&metric)->default_value("wasserstein2"), "series for the trend: bottleneck, wasserstein1 or wasserstein2")(
+  o.add_options()("metric", po::value(&metric)->default_value("wasserstein2"),
+                  "series for the trend: bottleneck, wasserstein1 or wasserstein2")(
       "plain", po::bool_switch(&plain), "one line per frame instead of redrawing the screen")(
       "until-complete", po::bool_switch(&until_complete), "exit when the run has all its planned frames");
   if (!parse(o, args)) return kOk;
-  if (metric != "bottleneck" && metric != "wasserstein1" && metric != "wasserstein2") throw po::error("unknown --metric '" + metric + "'");
+  if (metric != "bottleneck" && metric != "wasserstein1" && metric != "wasserstein2")
+    throw po::error("unknown --metric '" + metric + "'");
   std::signal(SIGINT, [](int) { interrupted = true; });
   std::signal(SIGTERM, [](int) { interrupted = true; });
 
@@ -282,8 +297,11 @@ int cmd_watch(const std::string& host, unsigned short port, const std::vector<st
       rpc.call("series.subscribe", sub);
       attempts = 0;
       if (!last_frame) {  // nothing to show until the first frame is analyzed (the run may still be relaxing)
-        if (plain) std::cout << "watching run " << run << ": waiting for the first analyzed frame" << std::endl;
-        else std::cout << "\x1b[H\x1b[2Jfnet watch  run " << run << "   (Ctrl-C to leave)\n\nwaiting for the first analyzed frame..." << std::flush;
+        if (plain)
+          std::cout << "watching run " << run << ": waiting for the first analyzed frame" << std::endl;
+        else
+          std::cout << "\x1b[H\x1b[2Jfnet watch  run " << run
+                    << "   (Ctrl-C to leave)\n\nwaiting for the first analyzed frame..." << std::flush;
       }
       double rho_start = -1;
       while (!interrupted) {
@@ -298,23 +316,25 @@ int cmd_watch(const std::string& host, unsigned short port, const std::vector<st
           if (trend.size() > 60) trend.pop_front();
         }
         if (plain) {
-          std::cout << "frame " << *last_frame << " rho " << number(p["rho"]) << " Z " << number(p["z"], 4) << " " << key << " "
-                    << number(d[key]) << std::endl;
+          std::cout << "frame " << *last_frame << " rho " << number(p["rho"]) << " Z " << number(p["z"], 4) << " "
+                    << key << " " << number(d[key]) << std::endl;
         } else {
           std::ostringstream s;
-          s << "\x1b[H\x1b[2J" << "fnet watch  run " << run << "   (Ctrl-C to leave)\n\n";
+          s << "\x1b[H\x1b[2J"
+            << "fnet watch  run " << run << "   (Ctrl-C to leave)\n\n";
           s << "frame " << *last_frame << (planned ? " / " + std::to_string(planned - 1) : "") << "   step "
             << p["step"].get<std::uint64_t>() << "\n";
           const double rho = p["rho"].get<double>();
           if (rho_end > rho_start && rho_start > 0) {
             const int filled = std::clamp(static_cast<int>(40 * (rho - rho_start) / (rho_end - rho_start)), 0, 40);
-            s << "rho " << std::fixed << std::setprecision(4) << rho << " [" << std::string(filled, '#') << std::string(40 - filled, '.')
-              << "] " << rho_end << "\n";
+            s << "rho " << std::fixed << std::setprecision(4) << rho << " [" << std::string(filled, '#')
+              << std::string(40 - filled, '.') << "] " << rho_end << "\n";
           } else {
             s << "rho " << std::fixed << std::setprecision(4) << rho << "\n";
           }
           s << "Z   " << std::setprecision(3) << p["z"].get<double>() << std::defaultfloat << "\n\n";
-          s << "distance from frame " << (p["previous"].is_null() ? std::string("-") : std::to_string(p["previous"].get<int>()))
+          s << "distance from frame "
+            << (p["previous"].is_null() ? std::string("-") : std::to_string(p["previous"].get<int>()))
             << "        normal PD0   normal PD1  tangent PD0  tangent PD1\n";
           for (const char* m : {"bottleneck", "wasserstein1", "wasserstein2"}) {
             s << std::setw(28) << std::left << m << std::right;
@@ -349,7 +369,8 @@ int main(int argc, char** argv) {
   while (!args.empty() && args[0].rfind("--", 0) == 0 && args[0] != "--help") {
     const std::string flag = args[0];
     if ((flag == "--host" || flag == "--port") && args.size() >= 2) {
-      if (flag == "--host") host = args[1];
+      if (flag == "--host")
+        host = args[1];
       else {
         try {
           port = std::stoul(args[1]);
@@ -375,8 +396,11 @@ int main(int argc, char** argv) {
     const auto p = static_cast<unsigned short>(port);
     if (command == "watch") return cmd_watch(host, p, args);
     using Fn = int (*)(Connection&, const std::vector<std::string>&);
-    const std::map<std::string, Fn> commands = {{"runs", cmd_runs}, {"query", cmd_query}, {"diagram", cmd_diagram},
-                                                 {"distance", cmd_distance}, {"status", cmd_status}};
+    const std::map<std::string, Fn> commands = {{"runs", cmd_runs},
+                                                {"query", cmd_query},
+                                                {"diagram", cmd_diagram},
+                                                {"distance", cmd_distance},
+                                                {"status", cmd_status}};
     const auto it = commands.find(command);
     if (it == commands.end()) {
       std::cerr << "fnetctl: unknown command '" << command << "'\n\n" << kUsageText;

@@ -13,7 +13,9 @@ RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::
   const auto endpoints = resolver.resolve(host, std::to_string(port), ec);
   if (ec) throw ConnectionError("cannot resolve " + host + ": " + ec.message());
   asio::connect(socket_, endpoints, ec);
-  if (ec) throw ConnectionError("cannot connect to fnet-server at " + host + ":" + std::to_string(port) + ": " + ec.message());
+  if (ec)
+    throw ConnectionError("cannot connect to fnet-server at " + host + ":" + std::to_string(port) + ": " +
+                          ec.message());
 }
 
 std::optional<json> RpcClient::read_message(std::chrono::milliseconds timeout) {
@@ -43,13 +45,15 @@ std::optional<json> RpcClient::read_message(std::chrono::milliseconds timeout) {
 
 json RpcClient::call(const std::string& method, const json& params) {
   const std::int64_t id = next_id_++;
-  const std::string request = json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}}.dump() + "\n";
+  const std::string request =
+      json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}}.dump() + "\n";
   boost::system::error_code ec;
   asio::write(socket_, asio::buffer(request), ec);
   if (ec) throw ConnectionError("cannot send to fnet-server: " + ec.message());
   const auto deadline = std::chrono::steady_clock::now() + timeout_;
   while (true) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) throw ConnectionError("fnet-server did not answer '" + method + "' in time");
     std::optional<json> message = read_message(left);
     if (!message) continue;

@@ -2,15 +2,14 @@
 // notifications read off the same connection (for watch).
 #pragma once
 
-#include <utility>  // Boost 1.74's asio needs it first under C++20
-
-#include <boost/asio.hpp>
-
 #include <chrono>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>  // Boost 1.74's asio needs it first under C++20
+
+#include <boost/asio.hpp>
+#include <nlohmann/json.hpp>
 
 namespace fnet::client {
 
@@ -25,7 +24,8 @@ class ConnectionError : public std::runtime_error {
 // The server answered with a JSON-RPC error.
 class CallError : public std::runtime_error {
  public:
-  CallError(int code, const std::string& message, json data) : std::runtime_error(message), code_(code), data_(std::move(data)) {}
+  CallError(int code, const std::string& message, json data)
+      : std::runtime_error(message), code_(code), data_(std::move(data)) {}
   int code() const { return code_; }
   const json& data() const { return data_; }
 

@@ -2,10 +2,10 @@
 // The codes are the contract of proto/api.md.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <stdexcept>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace fnet::rpc {
 

@@ -7,9 +7,12 @@ namespace fnet {
 
 std::string_view to_string(Metric metric) {
   switch (metric) {
-    case Metric::bottleneck: return "bottleneck";
-    case Metric::wasserstein1: return "wasserstein1";
-    case Metric::wasserstein2: return "wasserstein2";
+    case Metric::bottleneck:
+      return "bottleneck";
+    case Metric::wasserstein1:
+      return "wasserstein1";
+    case Metric::wasserstein2:
+      return "wasserstein2";
   }
   return "?";
 }
@@ -26,9 +29,12 @@ const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim) 
 
 DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric, EssentialConvention essential) {
   switch (metric) {
-    case Metric::bottleneck: return diagram_distance_q(a, b, 0, essential);
-    case Metric::wasserstein1: return diagram_distance_q(a, b, 1, essential);
-    case Metric::wasserstein2: return diagram_distance_q(a, b, 2, essential);
+    case Metric::bottleneck:
+      return diagram_distance_q(a, b, 0, essential);
+    case Metric::wasserstein1:
+      return diagram_distance_q(a, b, 1, essential);
+    case Metric::wasserstein2:
+      return diagram_distance_q(a, b, 2, essential);
   }
   return {};
 }
@@ -39,13 +45,15 @@ DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q, 
   return wasserstein_distance(a, b, {.q = q, .essential = essential, .delta = delta});
 }
 
-StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current, EssentialConvention essential) {
+StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current,
+                             EssentialConvention essential) {
   StepDistances out;
   for (const ForceKind force : kForces)
     for (int dim = 0; dim < 2; ++dim)
       for (const Metric metric : kMetrics)
         out.value[StepDistances::index(metric, dim, force)] =
-            diagram_distance(diagram_of(previous, force, dim), diagram_of(current, force, dim), metric, essential).value;
+            diagram_distance(diagram_of(previous, force, dim), diagram_of(current, force, dim), metric, essential)
+                .value;
   return out;
 }
 

@@ -42,7 +42,8 @@ struct StepDistances {
   std::array<double, 12> value{};
   double operator()(Metric metric, int dim, ForceKind force) const { return value[index(metric, dim, force)]; }
   static std::size_t index(Metric metric, int dim, ForceKind force) {
-    return static_cast<std::size_t>(metric) * 4 + static_cast<std::size_t>(dim) * 2 + (force == ForceKind::normal ? 0 : 1);
+    return static_cast<std::size_t>(metric) * 4 + static_cast<std::size_t>(dim) * 2 +
+           (force == ForceKind::normal ? 0 : 1);
   }
 };
 

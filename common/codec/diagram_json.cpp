@@ -13,7 +13,10 @@ nlohmann::json to_json(const Diagram& diagram) {
 }
 
 nlohmann::json to_json(const FrameDiagrams& d) {
-  return {{"pd0", to_json(d.pd0)}, {"pd1", to_json(d.pd1)}, {"vertices", d.vertices}, {"edges", d.edges},
+  return {{"pd0", to_json(d.pd0)},
+          {"pd1", to_json(d.pd1)},
+          {"vertices", d.vertices},
+          {"edges", d.edges},
           {"triangles", d.triangles}};
 }
 

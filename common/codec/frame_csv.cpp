@@ -14,9 +14,11 @@ std::vector<std::string_view> split(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    std::string_view field = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    std::string_view field =
+        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r')) field.remove_suffix(1);
+    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r'))
+      field.remove_suffix(1);
     out.push_back(field);
     if (comma == std::string_view::npos) return out;
     start = comma + 1;
@@ -105,16 +107,18 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   std::vector<Row> rows;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
   read_table(path, names, [&](const auto& f, const auto& fail, std::size_t line) {
-    rows.push_back({parse<std::int64_t>(f[0], "id", fail),
-                    Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)}, line});
+    rows.push_back(
+        {parse<std::int64_t>(f[0], "id", fail),
+         Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)},
+         line});
   });
   std::vector<Particle> out(rows.size());
   std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
   for (const Row& r : rows) {
     const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
     if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
-      throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " + std::to_string(rows.size()) +
-                     "): ids must be 0..n-1");
+      throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " +
+                     std::to_string(rows.size()) + "): ids must be 0..n-1");
     if (seen_at[r.id])
       throw CsvError(where + "particle id " + std::to_string(r.id) + " appears twice (first on line " +
                      std::to_string(seen_at[r.id]) + ")");

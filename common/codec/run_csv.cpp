@@ -38,7 +38,8 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     if (line.empty()) continue;
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size())
-      throw CsvError(index.string() + ":" + std::to_string(line_no) + ": expected " + std::to_string(header.size()) + " fields");
+      throw CsvError(index.string() + ":" + std::to_string(line_no) + ": expected " + std::to_string(header.size()) +
+                     " fields");
     RunFrame f;
     try {
       f.header.run_id = run_id;

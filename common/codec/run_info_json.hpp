@@ -9,7 +9,8 @@ namespace fnet {
 
 // {"run", "particles", "polydispersity", ..., "seed", "config": <config_json parsed, or the raw text>}
 nlohmann::json to_json(const RunInfo& info);
-// Inverse of to_json (also accepts the verbatim "config_json" text instead of "config"); throws nlohmann::json::exception on a missing or mistyped field.
+// Inverse of to_json (also accepts the verbatim "config_json" text instead of "config"); throws
+// nlohmann::json::exception on a missing or mistyped field.
 RunInfo run_info_from_json(const nlohmann::json& value);
 
 }  // namespace fnet

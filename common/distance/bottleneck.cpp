@@ -21,7 +21,7 @@ double diagonal_distance(PlanePoint p) { return std::fabs(p.x - p.y) / 2; }
 struct Side {
   std::vector<PlanePoint> points;
   std::vector<double> diagonal;
-  std::vector<std::int64_t> mate;    // index on the other side, -1 if unmatched
+  std::vector<std::int64_t> mate;     // index on the other side, -1 if unmatched
   std::vector<std::uint32_t> parent;  // search tree: the vertex of the other side that reached it
   LinfKdTree tree;
 

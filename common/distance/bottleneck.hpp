@@ -2,9 +2,9 @@
 // the diagonal at (birth - death) / 2. Exact by default; optionally a certified relative error.
 #pragma once
 
-#include "common/topology/diagram.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
+#include "common/topology/diagram.hpp"
 
 namespace fnet {
 

@@ -18,11 +18,22 @@ constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
 
 DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
                            std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
-    : n_(static_cast<std::uint32_t>(diagonal_a.size())), m_(static_cast<std::uint32_t>(diagonal_b.size())),
-      ha_(n_ + m_), hb_(n_ + m_ + 1), da_(std::move(diagonal_a)), db_(std::move(diagonal_b)),
-      mate_a_(n_, kNone), mate_b_(m_, kNone), mate_cost_a_(n_, 0), pi_(n_ + m_ + 2, 0.0),
-      key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()), dist_(n_ + m_ + 2, kInf),
-      pred_cost_(n_ + m_ + 2, 0), pred_(n_ + m_ + 2, 0), seen_(n_ + m_ + 2, 0), final_(n_ + m_ + 2, 0) {
+    : n_(static_cast<std::uint32_t>(diagonal_a.size())),
+      m_(static_cast<std::uint32_t>(diagonal_b.size())),
+      ha_(n_ + m_),
+      hb_(n_ + m_ + 1),
+      da_(std::move(diagonal_a)),
+      db_(std::move(diagonal_b)),
+      mate_a_(n_, kNone),
+      mate_b_(m_, kNone),
+      mate_cost_a_(n_, 0),
+      pi_(n_ + m_ + 2, 0.0),
+      key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()),
+      dist_(n_ + m_ + 2, kInf),
+      pred_cost_(n_ + m_ + 2, 0),
+      pred_(n_ + m_ + 2, 0),
+      seen_(n_ + m_ + 2, 0),
+      final_(n_ + m_ + 2, 0) {
   for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
   q_ = q;
   pa_.assign(a.begin(), a.end());
@@ -159,8 +170,8 @@ double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
   if (q_ == 1) {
     // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
     const PlanePoint a = pa_[i];
-    bound = std::max({bound, pi_[i] - a.x - m.minus_x, pi_[i] + a.x - m.plus_x, pi_[i] - a.y - m.minus_y,
-                      pi_[i] + a.y - m.plus_y});
+    bound = std::max(
+        {bound, pi_[i] - a.x - m.minus_x, pi_[i] + a.x - m.plus_x, pi_[i] - a.y - m.minus_y, pi_[i] + a.y - m.plus_y});
   }
   return dist_[i] + std::max(0.0, bound);
 }
@@ -369,7 +380,6 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
 }
 
 void DiagonalFlow::augment(std::uint32_t source, std::uint32_t target) {
-
   // Augment along the path, source to target.
   std::vector<std::uint32_t>& path = path_;
   path.clear();

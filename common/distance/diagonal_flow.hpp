@@ -82,7 +82,7 @@ class DiagonalFlow {
   // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
   // to the diagonal, keyed -da_i - pi(a_i).
   std::set<std::pair<double, std::uint32_t>> hub_a_, hub_b_;
-  std::vector<double> key_;   // the key a node is filed under, NaN if not filed
+  std::vector<double> key_;  // the key a node is filed under, NaN if not filed
   using Cursor = std::set<std::pair<double, std::uint32_t>>::const_iterator;
   Cursor cursor_[2];
   double hub_dist_[2] = {0, 0};
@@ -100,7 +100,7 @@ class DiagonalFlow {
   bool recompute_box(std::int32_t k);
   void greedy_start();
   std::vector<std::int32_t> box_stack_;
-  std::vector<double> box_db_;  // max db over the box
+  std::vector<double> box_db_;                     // max db over the box
   std::vector<std::uint32_t> box_run_, box_done_;  // points settled in the box during search box_run_
   std::vector<std::int32_t> box_parent_, leaf_of_b_;
   struct BoxEntry {

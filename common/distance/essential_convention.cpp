@@ -8,9 +8,12 @@ namespace fnet {
 
 std::string_view to_string(EssentialConvention convention) {
   switch (convention) {
-    case EssentialConvention::floor: return "floor";
-    case EssentialConvention::sentinel: return "sentinel";
-    case EssentialConvention::separate: return "separate";
+    case EssentialConvention::floor:
+      return "floor";
+    case EssentialConvention::sentinel:
+      return "sentinel";
+    case EssentialConvention::separate:
+      return "separate";
   }
   return "floor";
 }

@@ -12,7 +12,9 @@ constexpr std::uint32_t kLeafSize = 8;
 }
 
 LinfKdTree::LinfKdTree(std::span<const PlanePoint> points)
-    : points_(points.begin(), points.end()), order_(points.size()), leaf_of_(points.size(), -1),
+    : points_(points.begin(), points.end()),
+      order_(points.size()),
+      leaf_of_(points.size(), -1),
       erased_(points.size(), 0) {
   for (std::uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
   nodes_.reserve(2 * points.size() / kLeafSize + 2);
@@ -23,8 +25,12 @@ LinfKdTree::LinfKdTree(std::span<const PlanePoint> points)
 
 std::int32_t LinfKdTree::build(std::uint32_t begin, std::uint32_t end, std::int32_t parent, int depth) {
   const auto id = static_cast<std::int32_t>(nodes_.size());
-  Node node{points_[order_[begin]].x, points_[order_[begin]].x, points_[order_[begin]].y,
-            points_[order_[begin]].y, begin, end};
+  Node node{points_[order_[begin]].x,
+            points_[order_[begin]].x,
+            points_[order_[begin]].y,
+            points_[order_[begin]].y,
+            begin,
+            end};
   for (std::uint32_t k = begin; k < end; ++k) {
     const PlanePoint p = points_[order_[k]];
     node.xmin = std::min(node.xmin, p.x), node.xmax = std::max(node.xmax, p.x);

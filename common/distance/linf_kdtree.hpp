@@ -21,7 +21,7 @@ class LinfKdTree {
  public:
   struct Node {
     double xmin, xmax, ymin, ymax;
-    std::uint32_t begin, end;  // slice of order()
+    std::uint32_t begin, end;            // slice of order()
     std::int32_t left = -1, right = -1;  // children come after their parent in nodes()
   };
 
@@ -51,10 +51,10 @@ class LinfKdTree {
   std::vector<PlanePoint> points_;
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;
-  std::vector<std::int32_t> parent_;       // per node
-  std::vector<std::uint32_t> alive_;       // per node: points not erased
-  std::vector<std::int32_t> leaf_of_;      // per point
-  std::vector<std::uint8_t> erased_;       // per point
+  std::vector<std::int32_t> parent_;   // per node
+  std::vector<std::uint32_t> alive_;   // per node: points not erased
+  std::vector<std::int32_t> leaf_of_;  // per point
+  std::vector<std::uint8_t> erased_;   // per point
   std::vector<std::uint32_t> erased_list_;
   std::vector<std::int32_t> stack_;
 };

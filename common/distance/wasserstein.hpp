@@ -5,9 +5,9 @@
 
 #include <cstddef>
 
-#include "common/topology/diagram.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
+#include "common/topology/diagram.hpp"
 
 namespace fnet {
 

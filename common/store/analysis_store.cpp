@@ -4,19 +4,18 @@
 #include <cctype>
 #include <cstring>
 
-#include "common/store/hdf5_io.hpp"
 #include "common/codec/run_info_json.hpp"
+#include "common/store/hdf5_io.hpp"
 
 namespace fnet {
 namespace {
 
 using h5::check;
 
-constexpr std::size_t kInfoBytes = 16384;    // one run announcement, as JSON
-constexpr std::size_t kReasonBytes = 1024;   // one rejection reason
-constexpr std::size_t kCounts = 6;           // vertices, edges, triangles of normal, then tangential
-constexpr std::size_t kOffsets = 5;          // start of the 4 diagrams in /points, and the end
-
+constexpr std::size_t kInfoBytes = 16384;   // one run announcement, as JSON
+constexpr std::size_t kReasonBytes = 1024;  // one rejection reason
+constexpr std::size_t kCounts = 6;          // vertices, edges, triangles of normal, then tangential
+constexpr std::size_t kOffsets = 5;         // start of the 4 diagrams in /points, and the end
 
 h5::Datatype fixed_string(std::size_t bytes) {
   h5::Datatype type(H5Tcopy(H5T_C_S1), "H5Tcopy");
@@ -47,7 +46,8 @@ std::vector<std::string> read_strings(hid_t file, const char* name, std::size_t 
 
 h5::PropertyList latest_format() {
   h5::PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
-  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");  // SWMR needs it
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+        "H5Pset_libver_bounds");  // SWMR needs it
   return fapl;
 }
 
@@ -94,8 +94,8 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::create_extendible(f, "rejected_frame", H5T_NATIVE_UINT32, 0, 64);
     h5::create_extendible(f, "rejected_reason", fixed_string(kReasonBytes).get(), 0, 64);
   }
-  for (const char* name : {"announcements", "frame", "step", "time", "rho", "z", "previous", "distances", "counts", "offsets",
-                           "points", "rejected_frame", "rejected_reason"})
+  for (const char* name : {"announcements", "frame", "step", "time", "rho", "z", "previous", "distances", "counts",
+                           "offsets", "points", "rejected_frame", "rejected_reason"})
     sets_.emplace(name, h5::Dataset(H5Dopen2(file_.get(), name, H5P_DEFAULT), std::string("open ") + name));
   // From here on the file stays valid for readers whatever happens to this process.
   check(H5Fstart_swmr_write(file_.get()), "H5Fstart_swmr_write " + fresh.string());
@@ -114,7 +114,8 @@ void StoreWriter::write_info(const RunInfo& info) {
   record.erase("config");
   record["config_json"] = info.config_json;
   const std::string text = record.dump();
-  if (text.size() > kInfoBytes) throw h5::Error("run announcement longer than " + std::to_string(kInfoBytes) + " bytes");
+  if (text.size() > kInfoBytes)
+    throw h5::Error("run announcement longer than " + std::to_string(kInfoBytes) + " bytes");
   const auto row = padded(text, kInfoBytes);
   const h5::Datatype type = fixed_string(kInfoBytes);
   h5::append_rows(set("announcements"), type.get(), row.data(), 1, 0);
@@ -122,8 +123,8 @@ void StoreWriter::write_info(const RunInfo& info) {
 }
 
 void StoreWriter::append(const AnalyzedFrame& f) {
-  const std::array<const Diagram*, 4> diagrams{&f.diagrams.normal.pd0, &f.diagrams.normal.pd1, &f.diagrams.tangential.pd0,
-                                               &f.diagrams.tangential.pd1};
+  const std::array<const Diagram*, 4> diagrams{&f.diagrams.normal.pd0, &f.diagrams.normal.pd1,
+                                               &f.diagrams.tangential.pd0, &f.diagrams.tangential.pd1};
   std::array<std::uint64_t, kOffsets> offsets{};
   offsets[0] = h5::row_count(file_.get(), "points", "store");
   std::vector<double> points;
@@ -133,9 +134,9 @@ void StoreWriter::append(const AnalyzedFrame& f) {
   }
   // Points first, the frame index last: a reader trusts a frame only once "frame" covers it.
   h5::append_rows(set("points"), H5T_NATIVE_DOUBLE, points.data(), points.size() / 2, 2);
-  const std::array<std::uint64_t, kCounts> counts{f.diagrams.normal.vertices,     f.diagrams.normal.edges,
-                                                  f.diagrams.normal.triangles,    f.diagrams.tangential.vertices,
-                                                  f.diagrams.tangential.edges,    f.diagrams.tangential.triangles};
+  const std::array<std::uint64_t, kCounts> counts{f.diagrams.normal.vertices,  f.diagrams.normal.edges,
+                                                  f.diagrams.normal.triangles, f.diagrams.tangential.vertices,
+                                                  f.diagrams.tangential.edges, f.diagrams.tangential.triangles};
   const std::int64_t previous = f.previous ? static_cast<std::int64_t>(*f.previous) : -1;
   h5::append_rows(set("step"), H5T_NATIVE_UINT64, &f.header.step, 1, 0);
   h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &f.header.time, 1, 0);
@@ -164,7 +165,8 @@ StoredRun read_store(const std::filesystem::path& path) {
   const std::string file = path.string();
   const h5::PropertyList fapl = latest_format();
   // SWMR read opens a store whose writer is still running, or was killed.
-  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + file + " (not an HDF5 store?)");
+  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
+             "open " + file + " (not an HDF5 store?)");
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   const std::string schema = h5::read_string(root.get(), "schema", file);
   if (schema != kStoreSchema) throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "'");

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "common/analysis/frame_analysis.hpp"
-#include "common/store/hdf5_handle.hpp"
 #include "common/analysis/run_frame.hpp"
+#include "common/store/hdf5_handle.hpp"
 
 namespace fnet {
 
@@ -34,7 +34,7 @@ struct RejectedFrame {
 
 struct StoredRun {
   RunInfo info;
-  bool has_info = false;  // false until the run's announcement was seen
+  bool has_info = false;              // false until the run's announcement was seen
   std::vector<AnalyzedFrame> frames;  // ascending index
   std::vector<RejectedFrame> rejected;
 };

@@ -1,11 +1,11 @@
 // RAII ownership of HDF5 identifiers: each kind of hid_t closed by its own H5?close.
 #pragma once
 
-#include <hdf5.h>
-
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <hdf5.h>
 
 namespace fnet::h5 {
 

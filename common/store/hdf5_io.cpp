@@ -7,7 +7,8 @@ namespace {
 
 void write_scalar(hid_t obj, const char* name, hid_t type, const void* value) {
   Dataspace space(H5Screate(H5S_SCALAR), "H5Screate");
-  Attribute attr(H5Acreate2(obj, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), std::string("create attribute ") + name);
+  Attribute attr(H5Acreate2(obj, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                 std::string("create attribute ") + name);
   check(H5Awrite(attr.get(), type, value), std::string("write attribute ") + name);
 }
 
@@ -36,9 +37,11 @@ std::vector<T> read_any_array(hid_t group, const char* name, hid_t type, std::si
   const int rank = H5Sget_simple_extent_ndims(space.get());
   std::array<hsize_t, 2> dims{0, 0};
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  if (rank != (cols ? 2 : 1) || (cols && dims[1] != cols)) throw Error(where + ": dataset '" + name + "' has the wrong shape");
+  if (rank != (cols ? 2 : 1) || (cols && dims[1] != cols))
+    throw Error(where + ": dataset '" + name + "' has the wrong shape");
   std::vector<T> out(dims[0] * (cols ? cols : 1));
-  if (!out.empty()) check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), where + ": read " + name);
+  if (!out.empty())
+    check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), where + ": read " + name);
   return out;
 }
 
@@ -93,7 +96,8 @@ std::string read_string(hid_t obj, const char* name, const std::string& where) {
 void write_array(hid_t group, const char* name, const std::vector<double>& data, std::size_t rows, std::size_t cols) {
   write_any_array(group, name, H5T_NATIVE_DOUBLE, data.data(), rows, cols);
 }
-void write_array(hid_t group, const char* name, const std::vector<std::uint32_t>& data, std::size_t rows, std::size_t cols) {
+void write_array(hid_t group, const char* name, const std::vector<std::uint32_t>& data, std::size_t rows,
+                 std::size_t cols) {
   write_any_array(group, name, H5T_NATIVE_UINT32, data.data(), rows, cols);
 }
 std::vector<double> read_doubles(hid_t group, const char* name, std::size_t cols, const std::string& where) {
@@ -109,7 +113,8 @@ void create_extendible(hid_t loc, const char* name, hid_t type, std::size_t cols
   Dataspace space(H5Screate_simple(rank, dims.data(), max.data()), "H5Screate_simple");
   PropertyList props(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate");
   check(H5Pset_chunk(props.get(), rank, chunk.data()), std::string("chunk ") + name);
-  Dataset set(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), std::string("create dataset ") + name);
+  Dataset set(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+              std::string("create dataset ") + name);
 }
 
 void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, std::size_t cols) {
@@ -121,7 +126,8 @@ void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, 
   const std::array<hsize_t, 2> grown{dims[0] + rows, cols}, start{dims[0], 0}, count{rows, cols};
   check(H5Dset_extent(dataset, grown.data()), "H5Dset_extent");
   Dataspace file_space(H5Dget_space(dataset), "H5Dget_space");
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "select rows");
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select rows");
   Dataspace memory(H5Screate_simple(rank, count.data(), nullptr), "H5Screate_simple");
   check(H5Dwrite(dataset, type, memory.get(), file_space.get(), H5P_DEFAULT, data), "append rows");
 }

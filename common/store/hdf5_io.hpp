@@ -25,7 +25,8 @@ std::string read_string(hid_t obj, const char* name, const std::string& where);
 
 // rows x cols (cols == 0: a 1-D array of rows); zero rows are allowed.
 void write_array(hid_t group, const char* name, const std::vector<double>& data, std::size_t rows, std::size_t cols);
-void write_array(hid_t group, const char* name, const std::vector<std::uint32_t>& data, std::size_t rows, std::size_t cols);
+void write_array(hid_t group, const char* name, const std::vector<std::uint32_t>& data, std::size_t rows,
+                 std::size_t cols);
 std::vector<double> read_doubles(hid_t group, const char* name, std::size_t cols, const std::string& where);
 std::vector<std::uint32_t> read_uint32s(hid_t group, const char* name, std::size_t cols, const std::string& where);
 std::vector<std::uint64_t> read_uint64s(hid_t group, const char* name, std::size_t cols, const std::string& where);

@@ -85,8 +85,10 @@ RunFileWriter RunFileWriter::reopen(const std::filesystem::path& path, std::uint
   w.file_ = h5::File(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open " + path.string());
   h5::Group frames(H5Gopen2(w.file_.get(), "/frames", H5P_DEFAULT), path.string() + ": open /frames");
   for (const std::string& name : h5::member_names(frames.get(), path.string() + ": /frames")) {
-    if (std::stoul(name) >= keep) check(H5Ldelete(frames.get(), name.c_str(), H5P_DEFAULT), "delete frame " + name);
-    else ++w.frames_;
+    if (std::stoul(name) >= keep)
+      check(H5Ldelete(frames.get(), name.c_str(), H5P_DEFAULT), "delete frame " + name);
+    else
+      ++w.frames_;
   }
   check(H5Fflush(w.file_.get(), H5F_SCOPE_GLOBAL), "flush");
   return w;
@@ -134,7 +136,8 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   out.info = read_run_info(root.get(), file);
 
   h5::Group frames(H5Gopen2(f.get(), "/frames", H5P_DEFAULT), file + ": open /frames");
-  for (const std::string& name : h5::member_names(frames.get(), file + ": /frames")) {  // zero-padded: name order is frame order
+  for (const std::string& name :
+       h5::member_names(frames.get(), file + ": /frames")) {  // zero-padded: name order is frame order
     const std::string where = file + ": /frames/" + name;
     h5::Group g(H5Gopen2(frames.get(), name.c_str(), H5P_DEFAULT), where);
     RunFrame rf;
@@ -148,8 +151,10 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
     const auto wall_forces = h5::read_doubles(g.get(), "wall_contact_forces", 2, where);
     if (pairs.size() != forces.size() || wall_forces.size() != 2 * wall_particles.size())
       throw h5::Error(where + ": contact datasets disagree in length");
-    for (std::size_t k = 0; k < particles.size(); k += 3) rf.frame.particles.push_back({particles[k], particles[k + 1], particles[k + 2]});
-    for (std::size_t k = 0; k < pairs.size(); k += 2) rf.frame.contacts.push_back({pairs[k], pairs[k + 1], forces[k], forces[k + 1]});
+    for (std::size_t k = 0; k < particles.size(); k += 3)
+      rf.frame.particles.push_back({particles[k], particles[k + 1], particles[k + 2]});
+    for (std::size_t k = 0; k < pairs.size(); k += 2)
+      rf.frame.contacts.push_back({pairs[k], pairs[k + 1], forces[k], forces[k + 1]});
     for (std::size_t w = 0; w < wall_particles.size(); ++w)
       rf.wall_contacts.push_back({wall_particles[w], wall_forces[2 * w], wall_forces[2 * w + 1]});
     out.frames.push_back(std::move(rf));

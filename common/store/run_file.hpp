@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "common/store/hdf5_handle.hpp"
 #include "common/analysis/run_frame.hpp"
+#include "common/store/hdf5_handle.hpp"
 
 namespace fnet {
 

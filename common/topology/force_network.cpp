@@ -63,7 +63,7 @@ ForceNetwork build_network(const Frame& frame, ForceKind kind) {
     if (!(force > 0)) continue;
     auto i = static_cast<std::uint64_t>(c.i), j = static_cast<std::uint64_t>(c.j);
     const std::uint64_t swap = (i ^ j) & (std::uint64_t{0} - (j < i));  // rows list pairs either way:
-    i ^= swap, j ^= swap;                                                // no branch to mispredict
+    i ^= swap, j ^= swap;                                               // no branch to mispredict
     const std::uint64_t key = ~std::bit_cast<std::uint64_t>(force);
     lo = std::min(lo, key), hi = std::max(hi, key);
     all[n++] = {key, i << 32 | j};

@@ -38,8 +38,8 @@ void validate(const Frame& frame) {
     reject(frame, "particle count " + std::to_string(frame.particle_count) + " exceeds 2^32 - 1");
   }
   if (!frame.particles.empty() && frame.particles.size() != frame.particle_count)
-    reject(frame, "particle table has " + std::to_string(frame.particles.size()) +
-                      " rows but the frame declares " + std::to_string(frame.particle_count) + " particles");
+    reject(frame, "particle table has " + std::to_string(frame.particles.size()) + " rows but the frame declares " +
+                      std::to_string(frame.particle_count) + " particles");
 
   for (std::size_t k = 0; k < frame.particles.size(); ++k) {
     const Particle& p = frame.particles[k];

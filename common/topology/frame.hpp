@@ -21,9 +21,9 @@ struct Contact {
 };
 
 struct Frame {
-  std::string label;                 // names the frame in every message ("frame 12", a file name)
-  std::size_t particle_count = 0;    // vertices of the network, rattlers included
-  std::vector<Particle> particles;   // empty, or exactly particle_count entries
+  std::string label;                // names the frame in every message ("frame 12", a file name)
+  std::size_t particle_count = 0;   // vertices of the network, rattlers included
+  std::vector<Particle> particles;  // empty, or exactly particle_count entries
   std::vector<Contact> contacts;
 };
 

@@ -49,9 +49,7 @@ struct Neighbour {
 
 // Branch-free selection: compilers turn `c ? a : b` on unpredictable data into jumps more often
 // than not (even when told it is a coin flip); masks they leave alone.
-inline Index pick(bool c, Index if_true, Index if_false) {
-  return if_false ^ ((if_false ^ if_true) & (Index{0} - c));
-}
+inline Index pick(bool c, Index if_true, Index if_false) { return if_false ^ ((if_false ^ if_true) & (Index{0} - c)); }
 
 inline double pick(bool c, double if_true, double if_false) {
   const auto t = std::bit_cast<std::uint64_t>(if_true), f = std::bit_cast<std::uint64_t>(if_false);
@@ -140,11 +138,11 @@ class Buffer {
 // fresh memory costs a page fault per page on every call.
 struct Workspace {
   Buffer<Vertex> vertices;
-  Buffer<Index> link;             // per edge: the column in the pool that owns it as a pivot
-  Buffer<double> death;           // per edge: death of the class born there, or kNotABirth; + a spare
-  Buffer<std::uint8_t> loop;      // per edge: it closes a cycle
+  Buffer<Index> link;                  // per edge: the column in the pool that owns it as a pivot
+  Buffer<double> death;                // per edge: death of the class born there, or kNotABirth; + a spare
+  Buffer<std::uint8_t> loop;           // per edge: it closes a cycle
   Buffer<PersistencePoint> points[2];  // PD0 and PD1 before they are copied out
-  Buffer<Index> pool;             // reduced columns: size, then sorted edge positions
+  Buffer<Index> pool;                  // reduced columns: size, then sorted edge positions
   std::vector<std::vector<Neighbour>> spill;
   std::vector<std::pair<Index, Index>> closing;
   std::vector<Neighbour> list_a, list_b;
@@ -246,7 +244,8 @@ class Sweep {
         pool_size_ += 4 & (std::size_t{0} - any);
         death[k] = kFirstDeath[!any];
         triangles += closing.size();
-        if (closing.size() > 1) [[unlikely]] reduce(k, closing.subspan(1));
+        if (closing.size() > 1) [[unlikely]]
+          reduce(k, closing.subspan(1));
       }
 
       append(x, v, k);
@@ -443,7 +442,8 @@ class Sweep {
   }
 
   // Copies points into a diagram allocated once at its final size.
-  static void export_points(const PersistencePoint* first, const PersistencePoint* last, std::size_t extra, Diagram& out) {
+  static void export_points(const PersistencePoint* first, const PersistencePoint* last, std::size_t extra,
+                            Diagram& out) {
     const auto n = static_cast<std::size_t>(last - first);
     out.reserve(n + extra);
     prefer_huge_pages(out.data(), (n + extra) * sizeof(PersistencePoint));

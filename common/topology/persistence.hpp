@@ -9,7 +9,7 @@
 namespace fnet {
 
 struct FrameDiagrams {
-  Diagram pd0, pd1;            // canonical order, zero-length points dropped
+  Diagram pd0, pd1;  // canonical order, zero-length points dropped
   std::size_t vertices = 0;
   std::size_t edges = 0;
   std::size_t triangles = 0;

@@ -55,7 +55,9 @@ struct KeyedRecord {
 
 namespace detail {
 
-inline bool keyed_less(const KeyedRecord& a, const KeyedRecord& b) { return a.key != b.key ? a.key < b.key : a.tie < b.tie; }
+inline bool keyed_less(const KeyedRecord& a, const KeyedRecord& b) {
+  return a.key != b.key ? a.key < b.key : a.tie < b.tie;
+}
 
 // Buckets up to this size are finished by insertion sort.
 inline constexpr std::size_t kInsertionRun = 24;
@@ -135,13 +137,14 @@ std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<KeyedRec
   const auto sorted_bits = [&](std::size_t i) { return (from[i].key - lo) >> shift; };
   for (std::size_t i = 0, j = 0; i < n; i = j) {
     for (j = i + 1; j < n && sorted_bits(j) == sorted_bits(i);) ++j;
-    if (j - i > 1) [[unlikely]] sort_crowd(&from[i], &to[i], j - i);
+    if (j - i > 1) [[unlikely]]
+      sort_crowd(&from[i], &to[i], j - i);
   }
   return from;
 }
 
-inline std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch,
-                                       std::uint64_t lo, std::uint64_t hi) {
+inline std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch, std::uint64_t lo,
+                                       std::uint64_t hi) {
   const int width = static_cast<int>(std::bit_width(hi - lo));
   const int bits = std::min(width, static_cast<int>(std::bit_width(items.size())) + 10);
   if (bits <= 22) return sort_lsd<2>(items, scratch, lo, width);
@@ -154,8 +157,8 @@ inline std::span<KeyedRecord> sort_lsd(std::span<KeyedRecord> items, std::span<K
 // Sorts `items` ascending by (key, tie), given the least and greatest key. `scratch` must be at
 // least as long as `items`. Returns the sorted records: `items` itself, or the front of
 // `scratch`, whichever saves a copy. Requires items.size() < 2^32.
-inline std::span<KeyedRecord> sort_keyed(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch,
-                                         std::uint64_t lo, std::uint64_t hi) {
+inline std::span<KeyedRecord> sort_keyed(std::span<KeyedRecord> items, std::span<KeyedRecord> scratch, std::uint64_t lo,
+                                         std::uint64_t hi) {
   if (lo == hi) {
     detail::sort_ties(items.data(), items.size());
     return items;

@@ -2,18 +2,17 @@
 // Deleting a participant deletes its children, so children may be held without ownership.
 #pragma once
 
-#include <dds/dds.h>
-
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <dds/dds.h>
 
 namespace fnet::dds {
 
 class Error : public std::runtime_error {
  public:
-  Error(const std::string& what, dds_return_t rc)
-      : std::runtime_error(what + ": " + dds_strretcode(rc)), code_(rc) {}
+  Error(const std::string& what, dds_return_t rc) : std::runtime_error(what + ": " + dds_strretcode(rc)), code_(rc) {}
   dds_return_t code() const { return code_; }
 
  private:

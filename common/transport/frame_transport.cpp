@@ -11,7 +11,8 @@ namespace fnet::dds {
 namespace {
 
 void set_bounded(char* dst, std::size_t capacity, const std::string& value, const char* field) {
-  if (value.size() > capacity) throw std::invalid_argument(std::string(field) + " longer than " + std::to_string(capacity) + " bytes");
+  if (value.size() > capacity)
+    throw std::invalid_argument(std::string(field) + " longer than " + std::to_string(capacity) + " bytes");
   std::memcpy(dst, value.data(), value.size());
   dst[value.size()] = '\0';
 }
@@ -45,7 +46,8 @@ RunFrame decode(const fnet_ForceFrame& s) {
   f.label = frame_label(out.header.run_id, s.frame);
   f.particle_count = s.particle_count;
   const auto bad = [&](const std::string& what) { return FrameError(f.label + ": " + what); };
-  if (s.particles._length % 3 != 0) throw bad("particle array length " + std::to_string(s.particles._length) + " is not a multiple of 3");
+  if (s.particles._length % 3 != 0)
+    throw bad("particle array length " + std::to_string(s.particles._length) + " is not a multiple of 3");
   if (s.contact_pairs._length % 2 != 0 || s.contact_forces._length != s.contact_pairs._length)
     throw bad("contact arrays disagree: " + std::to_string(s.contact_pairs._length) + " indices, " +
               std::to_string(s.contact_forces._length) + " forces (expected 2 per contact each)");
@@ -57,8 +59,8 @@ RunFrame decode(const fnet_ForceFrame& s) {
     f.particles[k] = {s.particles._buffer[3 * k], s.particles._buffer[3 * k + 1], s.particles._buffer[3 * k + 2]};
   f.contacts.resize(s.contact_pairs._length / 2);
   for (std::size_t k = 0; k < f.contacts.size(); ++k)
-    f.contacts[k] = {s.contact_pairs._buffer[2 * k], s.contact_pairs._buffer[2 * k + 1], s.contact_forces._buffer[2 * k],
-                     s.contact_forces._buffer[2 * k + 1]};
+    f.contacts[k] = {s.contact_pairs._buffer[2 * k], s.contact_pairs._buffer[2 * k + 1],
+                     s.contact_forces._buffer[2 * k], s.contact_forces._buffer[2 * k + 1]};
   out.wall_contacts.resize(s.wall_contact_particles._length);
   for (std::size_t k = 0; k < out.wall_contacts.size(); ++k)
     out.wall_contacts[k] = {s.wall_contact_particles._buffer[k], s.wall_contact_forces._buffer[2 * k],
@@ -67,8 +69,9 @@ RunFrame decode(const fnet_ForceFrame& s) {
 }
 
 RunInfo decode(const fnet_RunInfo& s) {
-  return {s.run_id,      s.particles,         s.polydispersity, s.friction,      s.k_n,    s.restitution, s.kt_over_kn,
-          s.compression_speed, s.dt, s.final_density, s.frames, s.seed, s.config_json};
+  return {s.run_id,      s.particles,  s.polydispersity,    s.friction, s.k_n,
+          s.restitution, s.kt_over_kn, s.compression_speed, s.dt,       s.final_density,
+          s.frames,      s.seed,       s.config_json};
 }
 
 // Takes everything available from `reader` as loans, decoding each valid sample.
@@ -98,14 +101,18 @@ void take_all(dds_entity_t reader, std::size_t max_samples, Sink sink) {
 FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blocking)
     : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
   const dds_entity_t info_topic =
-      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr), "dds_create_topic(RunInfo)");
-  const dds_entity_t frame_topic = check(
-      dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr), "dds_create_topic(ForceFrame)");
+      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr),
+            "dds_create_topic(RunInfo)");
+  const dds_entity_t frame_topic =
+      check(dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr),
+            "dds_create_topic(ForceFrame)");
   Qos qos;
   set_qos(qos, true, DDS_LENGTH_UNLIMITED);
   dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, max_blocking);
-  info_writer_ = check(dds_create_writer(participant_.get(), info_topic, qos.get(), nullptr), "dds_create_writer(RunInfo)");
-  frame_writer_ = check(dds_create_writer(participant_.get(), frame_topic, qos.get(), nullptr), "dds_create_writer(ForceFrame)");
+  info_writer_ =
+      check(dds_create_writer(participant_.get(), info_topic, qos.get(), nullptr), "dds_create_writer(RunInfo)");
+  frame_writer_ =
+      check(dds_create_writer(participant_.get(), frame_topic, qos.get(), nullptr), "dds_create_writer(ForceFrame)");
 }
 
 void FramePublisher::publish(const RunInfo& info) {
@@ -189,14 +196,18 @@ bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
 FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_buffered)
     : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
   const dds_entity_t info_topic =
-      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr), "dds_create_topic(RunInfo)");
-  const dds_entity_t frame_topic = check(
-      dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr), "dds_create_topic(ForceFrame)");
+      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr),
+            "dds_create_topic(RunInfo)");
+  const dds_entity_t frame_topic =
+      check(dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr),
+            "dds_create_topic(ForceFrame)");
   Qos info_qos, frame_qos;
   set_qos(info_qos, false, DDS_LENGTH_UNLIMITED);
   set_qos(frame_qos, false, max_frames_buffered);
-  info_reader_ = check(dds_create_reader(participant_.get(), info_topic, info_qos.get(), nullptr), "dds_create_reader(RunInfo)");
-  frame_reader_ = check(dds_create_reader(participant_.get(), frame_topic, frame_qos.get(), nullptr), "dds_create_reader(ForceFrame)");
+  info_reader_ =
+      check(dds_create_reader(participant_.get(), info_topic, info_qos.get(), nullptr), "dds_create_reader(RunInfo)");
+  frame_reader_ = check(dds_create_reader(participant_.get(), frame_topic, frame_qos.get(), nullptr),
+                        "dds_create_reader(ForceFrame)");
   waitset_ = check(dds_create_waitset(participant_.get()), "dds_create_waitset");
   for (const dds_entity_t reader : {info_reader_, frame_reader_}) {
     const dds_entity_t cond = check(dds_create_readcondition(reader, DDS_ANY_STATE), "dds_create_readcondition");

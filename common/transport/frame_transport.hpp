@@ -3,13 +3,13 @@
 // a keep-all durability service so that a reader joining after the run still gets every frame).
 #pragma once
 
-#include <dds/dds.h>
-
 #include <cstdint>
 #include <vector>
 
-#include "common/transport/dds_entity.hpp"
+#include <dds/dds.h>
+
 #include "common/analysis/run_frame.hpp"
+#include "common/transport/dds_entity.hpp"
 
 namespace fnet::dds {
 

@@ -5,9 +5,9 @@
 #include <mutex>
 #include <set>
 
+#include "common/analysis/frame_analysis.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
-#include "common/analysis/frame_analysis.hpp"
 #include "common/codec/run_info_json.hpp"
 
 namespace fnet::server {
@@ -83,27 +83,30 @@ EssentialConvention get_essential(const json& params) {
 // A metric request: bottleneck | wasserstein1 | wasserstein2 | wasserstein (with q >= 1).
 struct MetricSpec {
   std::string name;
-  double q = 0;  // 0 for bottleneck
+  double q = 0;                  // 0 for bottleneck
   std::optional<Metric> stored;  // one of the three metrics every frame carries
 };
 
 MetricSpec get_metric(const json& params) {
   MetricSpec m;
   m.name = get_string(params, "metric");
-  if (m.name == "bottleneck") m.stored = Metric::bottleneck;
-  else if (m.name == "wasserstein1") m.stored = Metric::wasserstein1, m.q = 1;
-  else if (m.name == "wasserstein2") m.stored = Metric::wasserstein2, m.q = 2;
+  if (m.name == "bottleneck")
+    m.stored = Metric::bottleneck;
+  else if (m.name == "wasserstein1")
+    m.stored = Metric::wasserstein1, m.q = 1;
+  else if (m.name == "wasserstein2")
+    m.stored = Metric::wasserstein2, m.q = 2;
   else if (m.name == "wasserstein") {
     m.q = get_number(params, "q", 0);
     if (!(m.q >= 1)) throw Error(rpc::kInvalidParams, "metric 'wasserstein' needs parameter 'q' >= 1");
     if (m.q == 1) m.stored = Metric::wasserstein1;
     if (m.q == 2) m.stored = Metric::wasserstein2;
   } else {
-    throw Error(rpc::kInvalidParams, "unknown metric '" + m.name + "' (expected bottleneck, wasserstein1, wasserstein2 or wasserstein)");
+    throw Error(rpc::kInvalidParams,
+                "unknown metric '" + m.name + "' (expected bottleneck, wasserstein1, wasserstein2 or wasserstein)");
   }
   return m;
 }
-
 
 json describe(const MetricSpec& m, int dim, ForceKind force, EssentialConvention essential) {
   json out = {{"metric", m.name}, {"dim", dim}, {"force", to_string(force)}, {"essential", to_string(essential)}};
@@ -125,10 +128,17 @@ std::string resolve_run(const Registry& registry, const json& params, const char
 }
 
 json summary_json(const RunSummary& s) {
-  json out = {{"run", s.run_id},          {"frames", s.frames},         {"rejected", s.rejected},
-              {"pending", s.pending},     {"duplicates", s.duplicates}, {"skipped", s.skipped},
-              {"first_frame", nullptr},   {"last_frame", nullptr},      {"rho", nullptr},
-              {"z", nullptr},             {"seconds_since_last_frame", s.seconds_since_last_frame},
+  json out = {{"run", s.run_id},
+              {"frames", s.frames},
+              {"rejected", s.rejected},
+              {"pending", s.pending},
+              {"duplicates", s.duplicates},
+              {"skipped", s.skipped},
+              {"first_frame", nullptr},
+              {"last_frame", nullptr},
+              {"rho", nullptr},
+              {"z", nullptr},
+              {"seconds_since_last_frame", s.seconds_since_last_frame},
               {"announced", s.has_info}};
   if (s.last_frame) {
     out["first_frame"] = *s.first_frame;
@@ -145,12 +155,18 @@ json point_json(const SeriesPoint& p) {
   for (const Metric metric : kMetrics)
     for (int dim = 0; dim < 2; ++dim)
       for (const ForceKind force : kForces) {
-        const std::string key = std::string(to_string(metric)) + "/pd" + std::to_string(dim) + "/" + std::string(to_string(force));
+        const std::string key =
+            std::string(to_string(metric)) + "/pd" + std::to_string(dim) + "/" + std::string(to_string(force));
         distances[key] = p.previous ? json(p.distances(metric, dim, force)) : json(nullptr);
       }
-  return {{"run", p.run_id},  {"frame", p.header.index}, {"step", p.header.step},
-          {"time", p.header.time}, {"rho", p.header.rho},  {"z", p.header.z},
-          {"previous", p.previous ? json(*p.previous) : json(nullptr)}, {"distances", distances}};
+  return {{"run", p.run_id},
+          {"frame", p.header.index},
+          {"step", p.header.step},
+          {"time", p.header.time},
+          {"rho", p.header.rho},
+          {"z", p.header.z},
+          {"previous", p.previous ? json(*p.previous) : json(nullptr)},
+          {"distances", distances}};
 }
 
 // ---- methods -----------------------------------------------------------------------------------
@@ -191,8 +207,8 @@ json series_get(const Registry& registry, const json& params) {
       infinite.push_back(false);
       continue;
     }
-    const DistanceResult r = diagram_distance_q(diagram_of(prev_frame->diagrams, force, dim), diagram_of(f->diagrams, force, dim),
-                                                metric.q, essential);
+    const DistanceResult r = diagram_distance_q(diagram_of(prev_frame->diagrams, force, dim),
+                                                diagram_of(f->diagrams, force, dim), metric.q, essential);
     value.push_back(r.infinite ? json(nullptr) : json(r.value));
     infinite.push_back(r.infinite);
     any_infinite |= r.infinite;
@@ -212,11 +228,20 @@ json diagram_get(const Registry& registry, const json& params) {
   const ForceKind force = get_force(params);
   const std::string run = resolve_run(registry, params);
   const auto f = registry.frame(run, index);
-  if (!f) throw Error(rpc::kUnknownFrame, "run '" + run + "' has no analyzed frame " + std::to_string(index), {{"run", run}, {"frame", index}});
+  if (!f)
+    throw Error(rpc::kUnknownFrame, "run '" + run + "' has no analyzed frame " + std::to_string(index),
+                {{"run", run}, {"frame", index}});
   const FrameDiagrams& d = f->diagrams[force];
-  return {{"run", run},           {"frame", index},         {"dim", dim},         {"force", to_string(force)},
-          {"rho", f->header.rho}, {"z", f->header.z},       {"vertices", d.vertices}, {"edges", d.edges},
-          {"triangles", d.triangles}, {"points", to_json(dim == 0 ? d.pd0 : d.pd1)}};
+  return {{"run", run},
+          {"frame", index},
+          {"dim", dim},
+          {"force", to_string(force)},
+          {"rho", f->header.rho},
+          {"z", f->header.z},
+          {"vertices", d.vertices},
+          {"edges", d.edges},
+          {"triangles", d.triangles},
+          {"points", to_json(dim == 0 ? d.pd0 : d.pd1)}};
 }
 
 json distance_get(const Registry& registry, const json& params) {
@@ -234,7 +259,8 @@ json distance_get(const Registry& registry, const json& params) {
   if (!a) throw Error(rpc::kUnknownFrame, "run '" + run_a + "' has no analyzed frame " + std::to_string(frame_a));
   if (!b) throw Error(rpc::kUnknownFrame, "run '" + run_b + "' has no analyzed frame " + std::to_string(frame_b));
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = diagram_distance_q(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim), metric.q, essential, delta);
+  const DistanceResult r = diagram_distance_q(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
+                                              metric.q, essential, delta);
   json out = to_json(r);
   out.update(describe(metric, dim, force, essential));
   out["run"] = run_a;
@@ -255,10 +281,18 @@ json server_status(const ApiContext& ctx) {
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
           {"runs", runs},
           {"frames_per_second", r.frames_per_second()},
-          {"lag", {{"frames_in_flight", r.in_flight()}, {"ingest_queue", ctx.ingest_queue()},
-                   {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
-          {"frames", {{"received", c.received}, {"analyzed", c.analyzed}, {"rejected", c.rejected},
-                      {"duplicates", c.duplicates}, {"late", c.late}, {"skipped", c.skipped}, {"malformed", c.malformed}}},
+          {"lag",
+           {{"frames_in_flight", r.in_flight()},
+            {"ingest_queue", ctx.ingest_queue()},
+            {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
+          {"frames",
+           {{"received", c.received},
+            {"analyzed", c.analyzed},
+            {"rejected", c.rejected},
+            {"duplicates", c.duplicates},
+            {"late", c.late},
+            {"skipped", c.skipped},
+            {"malformed", c.malformed}}},
           {"rejections", rejections},
           {"connections", ctx.connections()},
           {"subscriptions", r.subscriptions()}};
@@ -278,7 +312,7 @@ rpc::Handler make_api(ApiContext& ctx) {
   auto sessions_mutex = std::make_shared<std::mutex>();
 
   return [&ctx, sessions, sessions_mutex](const std::string& method, const json& params,
-                                           const std::shared_ptr<rpc::Session>& session) -> json {
+                                          const std::shared_ptr<rpc::Session>& session) -> json {
     Registry& registry = ctx.registry;
     if (method == "runs.list") {
       json runs = json::array();
@@ -291,7 +325,8 @@ rpc::Handler make_api(ApiContext& ctx) {
       json out = summary_json(*s);
       out["parameters"] = s->has_info ? to_json(s->info) : json(nullptr);
       json rejected = json::array();
-      for (const RejectedFrame& r : registry.rejected(run)) rejected.push_back({{"frame", r.index}, {"reason", r.reason}});
+      for (const RejectedFrame& r : registry.rejected(run))
+        rejected.push_back({{"frame", r.index}, {"reason", r.reason}});
       out["rejected_frames"] = rejected;
       return out;
     }
@@ -326,8 +361,8 @@ rpc::Handler make_api(ApiContext& ctx) {
       {
         std::lock_guard lock(mine->mutex);
         if (mine->ids.size() >= ctx.max_subscriptions_per_connection)
-          throw Error(rpc::kTooManySubscriptions,
-                      "at most " + std::to_string(ctx.max_subscriptions_per_connection) + " subscriptions per connection");
+          throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx.max_subscriptions_per_connection) +
+                                                      " subscriptions per connection");
       }
       std::weak_ptr<rpc::Session> weak = session;
       const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {

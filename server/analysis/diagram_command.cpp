@@ -1,14 +1,15 @@
 // fnet-analyze diagram: a frame's persistence diagrams as one JSON object.
-#include <boost/program_options.hpp>
 #include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <boost/program_options.hpp>
+
 #include "common/codec/diagram_json.hpp"
+#include "common/codec/frame_csv.hpp"
 #include "common/topology/force_network.hpp"
 #include "common/topology/frame.hpp"
-#include "common/codec/frame_csv.hpp"
 #include "common/topology/persistence.hpp"
 #include "server/analysis/commands.hpp"
 
@@ -28,15 +29,14 @@ int diagram_command(const std::vector<std::string>& args) {
       "\n"
       "options");
   std::string contacts, particles, force = "normal";
-  options.add_options()
-      ("help,h", "show this help")
-      ("contacts", po::value(&contacts)->required(),
-       "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential "
-       "force (magnitudes are used)")
-      ("particles", po::value(&particles),
-       "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
-       "largest contact index + 1)")
-      ("force", po::value(&force)->default_value("normal"), "which force network: normal or tangential");
+  options.add_options()("help,h", "show this help")(
+      "contacts", po::value(&contacts)->required(),
+      "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential "
+      "force (magnitudes are used)")(
+      "particles", po::value(&particles),
+      "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
+      "largest contact index + 1)")("force", po::value(&force)->default_value("normal"),
+                                    "which force network: normal or tangential");
   if (!parse_options(options, args)) return 0;
 
   const fnet::ForceKind kind = fnet::parse_force_kind(force);

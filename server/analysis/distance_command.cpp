@@ -1,5 +1,4 @@
 // fnet-analyze distance: bottleneck or Wasserstein distance between two diagrams of fnet-analyze diagram.
-#include <boost/program_options.hpp>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -8,10 +7,12 @@
 #include <string>
 #include <vector>
 
+#include <boost/program_options.hpp>
+
+#include "common/analysis/frame_analysis.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
 #include "common/distance/essential_convention.hpp"
-#include "common/analysis/frame_analysis.hpp"
 #include "server/analysis/commands.hpp"
 
 namespace po = boost::program_options;
@@ -59,15 +60,14 @@ int distance_command(const std::vector<std::string>& args) {
   std::vector<std::string> files;
   double q = 0, delta = 0;
   int dim = 1;
-  options.add_options()
-      ("help,h", "show this help")
-      ("metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2, or wasserstein (with --q)")
-      ("q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")
-      ("dim", po::value(&dim)->default_value(1), "which diagram: 0 (pd0) or 1 (pd1)")
-      ("delta", po::value(&delta)->default_value(0), "0: exact; D > 0: certified relative error D")
-      ("essential", po::value(&essential)->default_value("floor"),
-       "never-dying classes: floor (die at 0), sentinel (death -1 literally), separate (matched among themselves)")
-      ("files", po::value(&files), "A.json B.json");
+  options.add_options()("help,h", "show this help")(
+      "metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2, or wasserstein (with --q)")(
+      "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
+      "dim", po::value(&dim)->default_value(1), "which diagram: 0 (pd0) or 1 (pd1)")(
+      "delta", po::value(&delta)->default_value(0), "0: exact; D > 0: certified relative error D")(
+      "essential", po::value(&essential)->default_value("floor"),
+      "never-dying classes: floor (die at 0), sentinel (death -1 literally), separate (matched among themselves)")(
+      "files", po::value(&files), "A.json B.json");
   po::positional_options_description positional;
   positional.add("files", 2);
   const auto vm = parse_options(options, args, &positional);

@@ -1,11 +1,12 @@
 // fnet-analyze: the offline front end of fnet's analysis.
-#include <boost/program_options.hpp>
 #include <exception>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <boost/program_options.hpp>
 
 #include "server/analysis/commands.hpp"
 
@@ -26,8 +27,9 @@ constexpr const char* kUsage =
 
 namespace fnet::analyze {
 
-std::optional<boost::program_options::variables_map> parse_options(const boost::program_options::options_description& options, const std::vector<std::string>& args,
-                   const boost::program_options::positional_options_description* positional) {
+std::optional<boost::program_options::variables_map> parse_options(
+    const boost::program_options::options_description& options, const std::vector<std::string>& args,
+    const boost::program_options::positional_options_description* positional) {
   namespace po = boost::program_options;
   po::variables_map vm;
   auto parser = po::command_line_parser(args).options(options);

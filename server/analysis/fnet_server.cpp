@@ -1,10 +1,10 @@
 // fnet-server: subscribes to the frames of every run on DDS, analyzes them as they arrive, keeps
 // one store per run under --data-dir and answers JSON-RPC on 127.0.0.1 (proto/api.md).
-#include <boost/asio/signal_set.hpp>
-#include <boost/program_options.hpp>
-
 #include <iostream>
 #include <thread>
+
+#include <boost/asio/signal_set.hpp>
+#include <boost/program_options.hpp>
 
 #include "server/analysis/api_methods.hpp"
 #include "server/analysis/ingest.hpp"
@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   unsigned short port = 7707;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   int domain = 0;
-  std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16, max_queued = 16 << 20;
+  std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
+              max_queued = 16 << 20;
   double gap_timeout = 30;
   po::options_description options(
       "usage: fnet-server --data-dir DIR [--port P] [options]\n\n"
@@ -26,22 +27,22 @@ int main(int argc, char** argv) {
       "set CYCLONEDDS_URI, e.g. to deploy/cyclonedds-loopback.xml) and serves the results as\n"
       "newline-delimited JSON-RPC 2.0 over TCP (proto/api.md). One HDF5 store per run in DIR;\n"
       "on restart the stores are reloaded and runs still streaming continue.\n\noptions");
-  options.add_options()
-      ("help,h", "show this help")
-      ("data-dir", po::value(&data_dir)->required(), "directory of the run stores (created if absent)")
-      ("port", po::value(&port)->default_value(port), "TCP port of the JSON API (0: any free port, printed at start)")
-      ("bind", po::value(&bind)->default_value(bind), "address to listen on (loopback by default)")
-      ("threads", po::value(&threads)->default_value(threads), "analysis threads")
-      ("domain", po::value(&domain)->default_value(domain), "DDS domain id")
-      ("max-in-flight", po::value(&max_in_flight)->default_value(max_in_flight),
-       "frames held for analysis at once; beyond it DDS makes the simulation wait (about 150 KB per "
-       "2 000-particle frame, counted twice: here and in the DDS reader)")
-      ("gap-timeout", po::value(&gap_timeout)->default_value(gap_timeout), "seconds to wait for a missing frame before skipping it")
-      ("max-connections", po::value(&max_connections)->default_value(max_connections), "concurrent API connections")
-      ("max-line-bytes", po::value(&max_line)->default_value(max_line), "longest request line accepted")
-      ("max-subscriptions", po::value(&max_subscriptions)->default_value(max_subscriptions), "subscriptions per connection")
-      ("max-queued-bytes", po::value(&max_queued)->default_value(max_queued),
-       "output queued for a client that does not read, beyond which it is dropped");
+  options.add_options()("help,h", "show this help")("data-dir", po::value(&data_dir)->required(),
+                                                    "directory of the run stores (created if absent)")(
+      "port", po::value(&port)->default_value(port), "TCP port of the JSON API (0: any free port, printed at start)")(
+      "bind", po::value(&bind)->default_value(bind), "address to listen on (loopback by default)")(
+      "threads", po::value(&threads)->default_value(threads), "analysis threads")(
+      "domain", po::value(&domain)->default_value(domain), "DDS domain id")(
+      "max-in-flight", po::value(&max_in_flight)->default_value(max_in_flight),
+      "frames held for analysis at once; beyond it DDS makes the simulation wait (about 150 KB per "
+      "2 000-particle frame, counted twice: here and in the DDS reader)")(
+      "gap-timeout", po::value(&gap_timeout)->default_value(gap_timeout),
+      "seconds to wait for a missing frame before skipping it")(
+      "max-connections", po::value(&max_connections)->default_value(max_connections), "concurrent API connections")(
+      "max-line-bytes", po::value(&max_line)->default_value(max_line), "longest request line accepted")(
+      "max-subscriptions", po::value(&max_subscriptions)->default_value(max_subscriptions),
+      "subscriptions per connection")("max-queued-bytes", po::value(&max_queued)->default_value(max_queued),
+                                      "output queued for a client that does not read, beyond which it is dropped");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, options), vm);
@@ -61,7 +62,8 @@ int main(int argc, char** argv) {
     fnet::server::RegistryLimits limits;
     limits.gap_timeout = std::chrono::milliseconds(static_cast<long>(gap_timeout * 1000));
     fnet::server::Registry registry(data_dir, pool, limits);
-    for (const std::string& problem : registry.load()) std::cerr << "fnet-server: could not load a store: " << problem << "\n";
+    for (const std::string& problem : registry.load())
+      std::cerr << "fnet-server: could not load a store: " << problem << "\n";
 
     boost::asio::io_context io;
     fnet::server::ApiContext context{registry};

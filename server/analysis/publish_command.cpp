@@ -1,9 +1,9 @@
 // fnet-analyze publish: replays a recorded run onto DDS, as fnet-simd would stream it.
-#include <boost/program_options.hpp>
-
 #include <chrono>
 #include <iostream>
 #include <thread>
+
+#include <boost/program_options.hpp>
 
 #include "common/transport/frame_transport.hpp"
 #include "server/analysis/commands.hpp"
@@ -26,13 +26,12 @@ int publish_command(const std::vector<std::string>& args) {
   double linger = 0, wait_for_reader = 10;
   options.add_options()("help,h", "show this help");
   source.add_options(options);
-  options.add_options()
-      ("rate", po::value(&rate)->default_value(0), "frames per second (0: as fast as possible)")
-      ("domain", po::value(&domain)->default_value(0), "DDS domain id")
-      ("wait-for-reader", po::value(&wait_for_reader)->default_value(10),
-       "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")
-      ("linger", po::value(&linger)->default_value(0),
-       "seconds to keep serving late subscribers from the durability history after the last frame");
+  options.add_options()("rate", po::value(&rate)->default_value(0), "frames per second (0: as fast as possible)")(
+      "domain", po::value(&domain)->default_value(0), "DDS domain id")(
+      "wait-for-reader", po::value(&wait_for_reader)->default_value(10),
+      "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")(
+      "linger", po::value(&linger)->default_value(0),
+      "seconds to keep serving late subscribers from the durability history after the last frame");
   if (!parse_options(options, args)) return 0;
   auto [info, frames] = source.read();
   dds::FramePublisher publisher(static_cast<dds_domainid_t>(domain));

@@ -68,7 +68,8 @@ void Session::on_close(std::function<void()> fn) {
 
 void Session::read_next() {
   asio::async_read_until(
-      socket_, input_, '\n', asio::bind_executor(strand_, [self = shared_from_this()](boost::system::error_code ec, std::size_t n) {
+      socket_, input_, '\n',
+      asio::bind_executor(strand_, [self = shared_from_this()](boost::system::error_code ec, std::size_t n) {
         if (ec == asio::error::not_found) {  // the line outgrew the buffer's limit
           self->send(error_response(nullptr, kInvalidRequest,
                                     "request line longer than " + std::to_string(self->limits_.max_line_bytes) +
@@ -148,21 +149,22 @@ void Session::write_next() {
     return;
   }
   // deque::push_back keeps references valid, so the front string outlives the async write.
-  asio::async_write(socket_, asio::buffer(output_.front()),
-                    asio::bind_executor(strand_, [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
-                      bool more = false, close_now = false;
-                      {
-                        std::lock_guard inner(self->mutex_);
-                        self->queued_bytes_ -= self->output_.front().size();
-                        self->output_.pop_front();
-                        more = !ec && !self->output_.empty();
-                        if (!more) self->writing_ = false;
-                        close_now = ec || (!more && self->close_when_flushed_);
-                      }
-                      if (ec) return self->close();
-                      if (close_now) return self->finish();
-                      if (more) self->write_next();
-                    }));
+  asio::async_write(
+      socket_, asio::buffer(output_.front()),
+      asio::bind_executor(strand_, [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
+        bool more = false, close_now = false;
+        {
+          std::lock_guard inner(self->mutex_);
+          self->queued_bytes_ -= self->output_.front().size();
+          self->output_.pop_front();
+          more = !ec && !self->output_.empty();
+          if (!more) self->writing_ = false;
+          close_now = ec || (!more && self->close_when_flushed_);
+        }
+        if (ec) return self->close();
+        if (close_now) return self->finish();
+        if (more) self->write_next();
+      }));
 }
 
 // After the last reply: half-close, then discard what the client is still sending (for at most
@@ -171,14 +173,16 @@ void Session::finish() {
   boost::system::error_code ignored;
   socket_.shutdown(tcp::socket::shutdown_send, ignored);
   auto timer = std::make_shared<asio::steady_timer>(socket_.get_executor(), std::chrono::seconds(3));
-  timer->async_wait(asio::bind_executor(strand_, [self = shared_from_this(), timer](boost::system::error_code) { self->close(); }));
+  timer->async_wait(
+      asio::bind_executor(strand_, [self = shared_from_this(), timer](boost::system::error_code) { self->close(); }));
   drain(timer);
 }
 
 void Session::drain(const std::shared_ptr<asio::steady_timer>& timer) {
   auto buffer = std::make_shared<std::array<char, 65536>>();
   socket_.async_read_some(asio::buffer(*buffer),
-                          asio::bind_executor(strand_, [self = shared_from_this(), buffer, timer](boost::system::error_code ec, std::size_t) {
+                          asio::bind_executor(strand_, [self = shared_from_this(), buffer, timer](
+                                                           boost::system::error_code ec, std::size_t) {
                             if (ec) {
                               timer->cancel();
                               return self->close();
@@ -200,7 +204,8 @@ void Session::close() {
   for (auto& fn : callbacks) fn();
 }
 
-Server::Server(asio::io_context& io, const std::string& address, unsigned short port, Handler handler, ServerLimits limits)
+Server::Server(asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
+               ServerLimits limits)
     : io_(io), acceptor_(io), handler_(std::move(handler)), limits_(limits) {
   const tcp::endpoint endpoint(asio::ip::make_address(address), port);
   acceptor_.open(endpoint.protocol());
@@ -223,7 +228,9 @@ void Server::accept_next() {
     if (!ec) {
       if (connections_ >= limits_.max_connections) {
         const std::string refusal =
-            error_response(nullptr, kServerBusy, "too many connections (" + std::to_string(limits_.max_connections) + ")").dump() +
+            error_response(nullptr, kServerBusy,
+                           "too many connections (" + std::to_string(limits_.max_connections) + ")")
+                .dump() +
             "\n";
         boost::system::error_code ignored;
         socket.non_blocking(true, ignored);

@@ -5,10 +5,6 @@
 #pragma once
 
 // Boost 1.74's asio/awaitable.hpp uses std::exchange without including <utility> (C++20).
-#include <utility>
-
-#include <boost/asio.hpp>
-
 #include <atomic>
 #include <cstddef>
 #include <deque>
@@ -16,22 +12,26 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <boost/asio.hpp>
 
 #include "proto/json_rpc.hpp"
 
 namespace fnet::rpc {
 
 struct ServerLimits {
-  std::size_t max_line_bytes = 1 << 20;        // a longer request gets an error and the connection closes
-  std::size_t max_connections = 256;           // beyond: an error line, then close
-  std::size_t max_queued_bytes = 16 << 20;     // unread output beyond this drops the client
+  std::size_t max_line_bytes = 1 << 20;     // a longer request gets an error and the connection closes
+  std::size_t max_connections = 256;        // beyond: an error line, then close
+  std::size_t max_queued_bytes = 16 << 20;  // unread output beyond this drops the client
 };
 
 class Session;
 
 // Called on a server thread for each well-formed request; returns the result or throws rpc::Error.
-using Handler = std::function<json(const std::string& method, const json& params, const std::shared_ptr<Session>& session)>;
+using Handler =
+    std::function<json(const std::string& method, const json& params, const std::shared_ptr<Session>& session)>;
 
 class Session : public std::enable_shared_from_this<Session> {
  public:

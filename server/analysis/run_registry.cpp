@@ -1,8 +1,8 @@
 #include "server/analysis/run_registry.hpp"
 
-#include <boost/asio/post.hpp>
-
 #include <iostream>
+
+#include <boost/asio/post.hpp>
 
 #include "common/analysis/frame_analysis.hpp"
 
@@ -204,7 +204,8 @@ void Registry::commit_locked(Run& run) {
       recent_commits_.push_back(Clock::now());
       const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances};
       for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
-        const bool keep = (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
+        const bool keep =
+            (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
         s = keep ? std::next(s) : subscriptions_.erase(s);
       }
     } else {

@@ -5,8 +5,6 @@
 // frame missing for longer than the gap timeout is skipped, and a restart reloads every store.
 #pragma once
 
-#include <boost/asio/thread_pool.hpp>
-
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -20,8 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "common/store/analysis_store.hpp"
+#include <boost/asio/thread_pool.hpp>
+
 #include "common/analysis/run_frame.hpp"
+#include "common/store/analysis_store.hpp"
 
 namespace fnet::server {
 

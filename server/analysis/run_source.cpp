@@ -1,7 +1,7 @@
 #include "server/analysis/run_source.hpp"
 
-#include "common/store/analysis_store.hpp"
 #include "common/codec/run_csv.hpp"
+#include "common/store/analysis_store.hpp"
 #include "common/store/run_file.hpp"
 
 namespace fnet::analyze {
@@ -9,10 +9,9 @@ namespace fnet::analyze {
 namespace po = boost::program_options;
 
 void RunSource::add_options(po::options_description& options) {
-  options.add_options()
-      ("run-file", po::value(&run_file), "HDF5 run file written by fnet-simd --out")
-      ("csv-dir", po::value(&csv_dir), "folder exported by fnet-simd --export-csv (index.csv + frame_NNNN_*.csv)")
-      ("run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)");
+  options.add_options()("run-file", po::value(&run_file), "HDF5 run file written by fnet-simd --out")(
+      "csv-dir", po::value(&csv_dir), "folder exported by fnet-simd --export-csv (index.csv + frame_NNNN_*.csv)")(
+      "run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)");
 }
 
 std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {

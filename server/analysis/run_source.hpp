@@ -1,10 +1,10 @@
 // Where fnet-analyze's run-level commands read a run from: an HDF5 run file or a CSV folder.
 #pragma once
 
-#include <boost/program_options.hpp>
-
 #include <string>
 #include <vector>
+
+#include <boost/program_options.hpp>
 
 #include "common/analysis/run_frame.hpp"
 

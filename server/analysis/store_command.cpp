@@ -1,12 +1,12 @@
 // fnet-analyze store: the analysis fnet-server does live, done offline into the same store file.
-#include <boost/program_options.hpp>
-
 #include <iostream>
 #include <map>
+
+#include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/store/analysis_store.hpp"
 #include "common/analysis/frame_analysis.hpp"
+#include "common/store/analysis_store.hpp"
 #include "server/analysis/commands.hpp"
 #include "server/analysis/run_source.hpp"
 
@@ -58,7 +58,11 @@ int store_command(const std::vector<std::string>& args) {
     previous = std::move(current);
     ++accepted;
   }
-  std::cout << nlohmann::json{{"run", info.run_id}, {"store", path.string()}, {"frames", accepted}, {"rejected", rejected}}.dump()
+  std::cout << nlohmann::json{{"run", info.run_id},
+                              {"store", path.string()},
+                              {"frames", accepted},
+                              {"rejected", rejected}}
+                   .dump()
             << "\n";
   return 0;
 }

@@ -61,9 +61,7 @@ class Reader {
     check();
     return s;
   }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw CheckpointError(path_.string() + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw CheckpointError(path_.string() + ": " + what); }
 
  private:
   void check() const {
@@ -184,8 +182,8 @@ Restored load_checkpoint(const std::filesystem::path& path) {
   load_scalars(r, s);
   fields(r, s);
   const std::size_t bodies = s.n + s.nw;
-  if (s.radius.size() != bodies || s.x[0].size() != bodies || s.x[4].size() != s.n ||
-      s.list.offset.size() != s.n + 1 || s.list.hx.size() != s.list.partner.size() || s.list.meff.size() != s.list.partner.size())
+  if (s.radius.size() != bodies || s.x[0].size() != bodies || s.x[4].size() != s.n || s.list.offset.size() != s.n + 1 ||
+      s.list.hx.size() != s.list.partner.size() || s.list.meff.size() != s.list.partner.size())
     r.fail("inconsistent array sizes");
   for (const std::uint32_t j : s.list.partner)
     if (j >= bodies) r.fail("a pair's partner is out of range");

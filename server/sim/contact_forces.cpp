@@ -14,8 +14,13 @@ namespace {
 struct Law {
   double dt, inv_dt, kn, kt, inv_kt, gamma, mu;
   explicit Law(const Simulation& s)
-      : dt(s.c.dt), inv_dt(1.0 / s.c.dt), kn(s.c.kn), kt(s.c.kt), inv_kt(s.c.kt > 0 ? 1.0 / s.c.kt : 0.0),
-        gamma(s.c.gamma_n), mu(s.params.mu) {}
+      : dt(s.c.dt),
+        inv_dt(1.0 / s.c.dt),
+        kn(s.c.kn),
+        kt(s.c.kt),
+        inv_kt(s.c.kt > 0 ? 1.0 / s.c.kt : 0.0),
+        gamma(s.c.gamma_n),
+        mu(s.params.mu) {}
 };
 
 // What the pair loops read: positions, velocities × Δt, spins × Δt, radii, and the list.
@@ -23,8 +28,14 @@ struct Bodies {
   const double *px, *py, *vx, *vy, *w, *rad;
   const std::uint32_t *offset, *partner;
   explicit Bodies(const Simulation& s)
-      : px(s.x[0].data()), py(s.y[0].data()), vx(s.x[1].data()), vy(s.y[1].data()), w(s.th[1].data()),
-        rad(s.radius.data()), offset(s.list.offset.data()), partner(s.list.partner.data()) {}
+      : px(s.x[0].data()),
+        py(s.y[0].data()),
+        vx(s.x[1].data()),
+        vy(s.y[1].data()),
+        w(s.th[1].data()),
+        rad(s.radius.data()),
+        offset(s.list.offset.data()),
+        partner(s.list.partner.data()) {}
 };
 
 // The force of pair p between grain i and body j: updates the pair's history and records, and
@@ -104,7 +115,8 @@ FNET_SIM_CLONES void serial_forces(Simulation& s) {
       const std::uint32_t j = b.partner[p];
       const double rj = b.rad[j];
       double cfx, cfy, tz;
-      if (!pair_force(law, l, p, xi, yi, ri, vxi, vyi, wi, b.px[j], b.py[j], rj, b.vx[j], b.vy[j], b.w[j], cfx, cfy, tz))
+      if (!pair_force(law, l, p, xi, yi, ri, vxi, vyi, wi, b.px[j], b.py[j], rj, b.vx[j], b.vy[j], b.w[j], cfx, cfy,
+                      tz))
         continue;
       fxi += cfx;
       fyi += cfy;
@@ -131,8 +143,8 @@ FNET_SIM_CLONES void pair_pass(Simulation& s, std::size_t begin, std::size_t end
     const double xi = b.px[i], yi = b.py[i], ri = b.rad[i], vxi = b.vx[i], vyi = b.vy[i], wi = b.w[i];
     for (std::uint32_t p = b.offset[i]; p < b.offset[i + 1]; ++p) {
       const std::uint32_t j = b.partner[p];
-      pair_force(law, l, p, xi, yi, ri, vxi, vyi, wi, b.px[j], b.py[j], b.rad[j], b.vx[j], b.vy[j], b.w[j], cfx[p], cfy[p],
-                 ctz[p]);
+      pair_force(law, l, p, xi, yi, ri, vxi, vyi, wi, b.px[j], b.py[j], b.rad[j], b.vx[j], b.vy[j], b.w[j], cfx[p],
+                 cfy[p], ctz[p]);
     }
   }
 }
@@ -200,8 +212,9 @@ void compute_forces(Simulation& s, Workers* workers, const GrainsDone& then) {
     if (part == 0) return 0;
     if (part == parts) return s.n;
     const std::uint32_t target = static_cast<std::uint32_t>(pairs * part / parts);
-    return static_cast<std::size_t>(std::lower_bound(l.offset.begin(), l.offset.begin() + static_cast<std::ptrdiff_t>(s.n), target) -
-                                    l.offset.begin());
+    return static_cast<std::size_t>(
+        std::lower_bound(l.offset.begin(), l.offset.begin() + static_cast<std::ptrdiff_t>(s.n), target) -
+        l.offset.begin());
   };
   workers->run([&](unsigned part) { pair_pass(s, row_split(part), row_split(part + 1)); });
   workers->run([&](unsigned part) {

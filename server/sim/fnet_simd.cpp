@@ -48,11 +48,10 @@ void print_progress(const Progress& p) {
     std::fprintf(stderr, "fnet-simd: relaxing  step %lld  KE/grain %.3g  rho %.4f  Z %.3f  %.0f steps/s\n",
                  static_cast<long long>(p.step), p.kinetic_energy, p.rho, p.z, p.steps_per_second);
   } else {
-    std::fprintf(stderr,
-                 "fnet-simd: %s  rho %.4f  Z %.3f  frames %zu/%zu  step %lld/%lld  %.0f steps/s  ETA %s\n",
+    std::fprintf(stderr, "fnet-simd: %s  rho %.4f  Z %.3f  frames %zu/%zu  step %lld/%lld  %.0f steps/s  ETA %s\n",
                  p.phase == Phase::done ? "done" : "compressing", p.rho, p.z, p.frames_done, p.frames,
-                 static_cast<long long>(p.compress_step), static_cast<long long>(p.compress_steps),
-                 p.steps_per_second, duration(p.eta_seconds).c_str());
+                 static_cast<long long>(p.compress_step), static_cast<long long>(p.compress_steps), p.steps_per_second,
+                 duration(p.eta_seconds).c_str());
   }
 }
 
@@ -86,44 +85,44 @@ int main(int argc, char** argv) try {
   double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
   int domain = 0;
   unsigned threads = 1;
-  options.add_options()
-      ("help,h", "show this help")
-      ("config", po::value(&config), "JSON object of parameters (keys: the names in --show-params)")
-      ("particles", po::value<std::size_t>(), "number of grains N (default 2000)")
-      ("polydispersity", po::value<double>(), "r_p: diameters uniform in [1-r_p/2, 1+r_p/2] (default 0.4)")
-      ("mu", po::value<double>(), "Coulomb friction coefficient mu_s (default 0.5)")
-      ("kn", po::value<double>(), "normal spring constant k_n, m g/d (default 4000)")
-      ("en", po::value<double>(), "normal restitution of two mean grains (default 0.5)")
-      ("kt-ratio", po::value<double>(), "k_t / k_n (default 0.8)")
-      ("compression-speed", po::value<double>(), "wall speed v_c, d/tau_c (default 2.5e-5)")
-      ("dt-divisor", po::value<double>(), "time step = tau_c / this (default 50)")
-      ("rho-final", po::value<double>(), "packing fraction that ends the compression (default 0.90)")
-      ("frames", po::value<std::size_t>(), "frames over the compression, first and last included (default 100)")
-      ("seed", po::value<std::uint64_t>(), "random seed: diameters and initial velocities (default 1)")
-      ("box", po::value<double>(), "initial side of the free interior, d (default 50)")
-      ("wall-diameter", po::value<double>(), "diameter of the wall particles, d (default 1)")
-      ("initial-speed", po::value<double>(), "initial speeds uniform in a disk of this radius, d/tau_c (default 0.1)")
-      ("relax-energy", po::value<double>(), "relaxation ends below this kinetic energy per grain, m d^2/tau_c^2 (default 1e-7)")
-      ("relax-max-time", po::value<double>(), "longest relaxation, tau_c (default 2e5)")
-      ("skin", po::value<double>(), "Verlet-list skin, d (default 0.15)")
-      ("integrator", po::value(&integrator), "gear (the paper's, default) or verlet")
-      ("threads", po::value(&threads)->default_value(1),
-       "threads for the time steps (forces and the Gear step); the results are the same bits for any count")
-      ("run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")
-      ("export-csv", po::value(&export_dir), "write frames as CSV files into this directory")
-      ("out", po::value(&out_file), "write the run (parameters and every frame) to this HDF5 file (proto/run_file.md)")
-      ("no-dds", "do not publish frames over DDS")
-      ("domain", po::value(&domain)->default_value(0), "DDS domain id (configure Cyclone DDS with CYCLONEDDS_URI)")
-      ("ack-timeout", po::value(&ack_timeout)->default_value(60),
-       "seconds to wait at the end until every subscriber acknowledged every frame")
-      ("linger", po::value(&linger)->default_value(0),
-       "seconds to keep serving late subscribers from the durability history after the last frame")
-      ("checkpoint", po::value(&checkpoint_path), "checkpoint file")
-      ("checkpoint-interval", po::value(&checkpoint_interval)->default_value(60), "seconds between checkpoints")
-      ("resume", "continue the run saved in the checkpoint file (its parameters are used)")
-      ("write-lammps-data", po::value(&lammps_data), "write the initial state as a LAMMPS data file, then run")
-      ("show-params", "print the parameters and derived constants as JSON and exit")
-      ("quiet,q", "no progress reports on stderr");
+  options.add_options()("help,h", "show this help")("config", po::value(&config),
+                                                    "JSON object of parameters (keys: the names in --show-params)")(
+      "particles", po::value<std::size_t>(), "number of grains N (default 2000)")(
+      "polydispersity", po::value<double>(), "r_p: diameters uniform in [1-r_p/2, 1+r_p/2] (default 0.4)")(
+      "mu", po::value<double>(), "Coulomb friction coefficient mu_s (default 0.5)")(
+      "kn", po::value<double>(), "normal spring constant k_n, m g/d (default 4000)")(
+      "en", po::value<double>(), "normal restitution of two mean grains (default 0.5)")(
+      "kt-ratio", po::value<double>(), "k_t / k_n (default 0.8)")("compression-speed", po::value<double>(),
+                                                                  "wall speed v_c, d/tau_c (default 2.5e-5)")(
+      "dt-divisor", po::value<double>(), "time step = tau_c / this (default 50)")(
+      "rho-final", po::value<double>(), "packing fraction that ends the compression (default 0.90)")(
+      "frames", po::value<std::size_t>(), "frames over the compression, first and last included (default 100)")(
+      "seed", po::value<std::uint64_t>(), "random seed: diameters and initial velocities (default 1)")(
+      "box", po::value<double>(), "initial side of the free interior, d (default 50)")(
+      "wall-diameter", po::value<double>(), "diameter of the wall particles, d (default 1)")(
+      "initial-speed", po::value<double>(), "initial speeds uniform in a disk of this radius, d/tau_c (default 0.1)")(
+      "relax-energy", po::value<double>(),
+      "relaxation ends below this kinetic energy per grain, m d^2/tau_c^2 (default 1e-7)")(
+      "relax-max-time", po::value<double>(), "longest relaxation, tau_c (default 2e5)")(
+      "skin", po::value<double>(), "Verlet-list skin, d (default 0.15)")("integrator", po::value(&integrator),
+                                                                         "gear (the paper's, default) or verlet")(
+      "threads", po::value(&threads)->default_value(1),
+      "threads for the time steps (forces and the Gear step); the results are the same bits for any count")(
+      "run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")(
+      "export-csv", po::value(&export_dir), "write frames as CSV files into this directory")(
+      "out", po::value(&out_file), "write the run (parameters and every frame) to this HDF5 file (proto/run_file.md)")(
+      "no-dds", "do not publish frames over DDS")("domain", po::value(&domain)->default_value(0),
+                                                  "DDS domain id (configure Cyclone DDS with CYCLONEDDS_URI)")(
+      "ack-timeout", po::value(&ack_timeout)->default_value(60),
+      "seconds to wait at the end until every subscriber acknowledged every frame")(
+      "linger", po::value(&linger)->default_value(0),
+      "seconds to keep serving late subscribers from the durability history after the last frame")(
+      "checkpoint", po::value(&checkpoint_path), "checkpoint file")(
+      "checkpoint-interval", po::value(&checkpoint_interval)->default_value(60), "seconds between checkpoints")(
+      "resume", "continue the run saved in the checkpoint file (its parameters are used)")(
+      "write-lammps-data", po::value(&lammps_data), "write the initial state as a LAMMPS data file, then run")(
+      "show-params", "print the parameters and derived constants as JSON and exit")("quiet,q",
+                                                                                    "no progress reports on stderr");
   po::variables_map vm;
   po::store(po::parse_command_line(argc, argv, options), vm);
   if (vm.count("help")) {
@@ -138,10 +137,10 @@ int main(int argc, char** argv) try {
     if (!in) throw std::runtime_error(config + ": cannot open config file");
     apply_json(p, nlohmann::json::parse(in));
   }
-  const char* physics_flags[] = {"particles", "polydispersity", "mu", "kn", "en", "kt-ratio",
-                                 "compression-speed", "dt-divisor", "rho-final", "frames", "seed", "box",
-                                 "wall-diameter", "initial-speed", "relax-energy", "relax-max-time", "skin",
-                                 "integrator", "config"};
+  const char* physics_flags[] = {
+      "particles",    "polydispersity", "mu",     "kn",         "en",    "kt-ratio",      "compression-speed",
+      "dt-divisor",   "rho-final",      "frames", "seed",       "box",   "wall-diameter", "initial-speed",
+      "relax-energy", "relax-max-time", "skin",   "integrator", "config"};
   if (vm.count("particles")) p.particles = vm["particles"].as<std::size_t>();
   if (vm.count("polydispersity")) p.polydispersity = vm["polydispersity"].as<double>();
   if (vm.count("mu")) p.mu = vm["mu"].as<double>();
@@ -165,22 +164,30 @@ int main(int argc, char** argv) try {
   if (vm.count("show-params")) {
     const Constants c = derive(p);
     nlohmann::json j = {{"params", to_json(p)},
-                        {"derived", {{"tau_c", c.tau_c}, {"gamma_n", c.gamma_n}, {"dt", c.dt},
-                                     {"kt", c.kt}, {"wall_speed_internal", c.wall_speed}}}};
+                        {"derived",
+                         {{"tau_c", c.tau_c},
+                          {"gamma_n", c.gamma_n},
+                          {"dt", c.dt},
+                          {"kt", c.kt},
+                          {"wall_speed_internal", c.wall_speed}}}};
     std::cout << j.dump(2) << "\n";
     return 0;
   }
 
   const bool resume = vm.count("resume") > 0;
-  if (checkpoint_path.empty() && !export_dir.empty()) checkpoint_path = (fs::path(export_dir) / "checkpoint.fnetsim").string();
+  if (checkpoint_path.empty() && !export_dir.empty())
+    checkpoint_path = (fs::path(export_dir) / "checkpoint.fnetsim").string();
   if (resume) {
     if (checkpoint_path.empty()) throw po::error("--resume needs --checkpoint FILE or --export-csv DIR");
     for (const char* flag : physics_flags)
-      if (vm.count(flag)) throw po::error(std::string("--") + flag + " cannot change a resumed run (its parameters come from the checkpoint)");
+      if (vm.count(flag))
+        throw po::error(std::string("--") + flag +
+                        " cannot change a resumed run (its parameters come from the checkpoint)");
   }
   const bool publish = !vm.count("no-dds");
   if (!publish && export_dir.empty() && out_file.empty())
-    std::fprintf(stderr, "fnet-simd: note: --no-dds and no --export-csv or --out: frames are computed but written nowhere\n");
+    std::fprintf(stderr,
+                 "fnet-simd: note: --no-dds and no --export-csv or --out: frames are computed but written nowhere\n");
 
   Simulation sim;
   if (resume) {
@@ -230,7 +237,8 @@ int main(int argc, char** argv) try {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const auto steps = static_cast<double>(sim.step - steps_before);
   if (!vm.count("quiet") || finished)
-    std::fprintf(stderr, "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu, %u thread%s)\n",
+    std::fprintf(stderr,
+                 "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu, %u thread%s)\n",
                  static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
                  steps * static_cast<double>(sim.n) / seconds, sim.n, threads, threads == 1 ? "" : "s");
   run_file.reset();  // closed now: readers need not wait while late DDS subscribers are served

@@ -47,12 +47,14 @@ bool moved_beyond(const Simulation& s, double limit2) {
 
 // The fused loops take their arrays as restrict parameters: GCC honours restrict on parameters
 // (not on local pointers), and then vectorizes.
-[[gnu::noinline]] FNET_SIM_CLONES bool predict_all(
-    double* __restrict x0, double* __restrict x1, double* __restrict x2, double* __restrict x3,
-    const double* __restrict x4, double* __restrict y0, double* __restrict y1, double* __restrict y2,
-    double* __restrict y3, const double* __restrict y4, double* __restrict t0, double* __restrict t1,
-    double* __restrict t2, double* __restrict t3, const double* __restrict t4, const double* __restrict xb,
-    const double* __restrict yb, double limit2, std::size_t n) {
+[[gnu::noinline]] FNET_SIM_CLONES bool predict_all(double* __restrict x0, double* __restrict x1, double* __restrict x2,
+                                                   double* __restrict x3, const double* __restrict x4,
+                                                   double* __restrict y0, double* __restrict y1, double* __restrict y2,
+                                                   double* __restrict y3, const double* __restrict y4,
+                                                   double* __restrict t0, double* __restrict t1, double* __restrict t2,
+                                                   double* __restrict t3, const double* __restrict t4,
+                                                   const double* __restrict xb, const double* __restrict yb,
+                                                   double limit2, std::size_t n) {
   int moved = 0;  // an OR of comparisons (not a max) so that the loop vectorizes
   for (std::size_t i = 0; i < n; ++i) {
     predict(x0, x1, x2, x3, x4, i);
@@ -64,12 +66,14 @@ bool moved_beyond(const Simulation& s, double limit2) {
   return moved != 0;
 }
 
-[[gnu::noinline]] FNET_SIM_CLONES void correct_all(double* __restrict x0, double* __restrict x1, double* __restrict x2, double* __restrict x3,
-                 double* __restrict x4, double* __restrict y0, double* __restrict y1, double* __restrict y2,
-                 double* __restrict y3, double* __restrict y4, double* __restrict t0, double* __restrict t1,
-                 double* __restrict t2, double* __restrict t3, double* __restrict t4, const double* __restrict fx,
-                 const double* __restrict fy, const double* __restrict tq, const double* __restrict im,
-                 const double* __restrict ii, double h, std::size_t n) {
+[[gnu::noinline]] FNET_SIM_CLONES void correct_all(double* __restrict x0, double* __restrict x1, double* __restrict x2,
+                                                   double* __restrict x3, double* __restrict x4, double* __restrict y0,
+                                                   double* __restrict y1, double* __restrict y2, double* __restrict y3,
+                                                   double* __restrict y4, double* __restrict t0, double* __restrict t1,
+                                                   double* __restrict t2, double* __restrict t3, double* __restrict t4,
+                                                   const double* __restrict fx, const double* __restrict fy,
+                                                   const double* __restrict tq, const double* __restrict im,
+                                                   const double* __restrict ii, double h, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     correct(x0, x1, x2, x3, x4, i, h * fx[i] * im[i]);
     correct(y0, y1, y2, y3, y4, i, h * fy[i] * im[i]);
@@ -99,8 +103,8 @@ void gear_correct_range(Simulation& s, std::size_t b, std::size_t e) {
   const double h = 0.5 * s.c.dt * s.c.dt;  // a Δt² / 2 is the scaled second derivative
   correct_all(x[0].data() + b, x[1].data() + b, x[2].data() + b, x[3].data() + b, x[4].data() + b, y[0].data() + b,
               y[1].data() + b, y[2].data() + b, y[3].data() + b, y[4].data() + b, t[0].data() + b, t[1].data() + b,
-              t[2].data() + b, t[3].data() + b, t[4].data() + b, s.fx.data() + b, s.fy.data() + b,
-              s.torque.data() + b, s.inv_mass.data() + b, s.inv_inertia.data() + b, h, e - b);
+              t[2].data() + b, t[3].data() + b, t[4].data() + b, s.fx.data() + b, s.fy.data() + b, s.torque.data() + b,
+              s.inv_mass.data() + b, s.inv_inertia.data() + b, h, e - b);
 }
 
 // A team splits the grains in equal shares (the corrector runs with the force sum,
@@ -115,8 +119,6 @@ bool gear_predict(Simulation& s, double limit2, Workers* workers) {
   });
   return moved.load();
 }
-
-
 
 // Half kick: the scaled velocity v Δt gains a Δt²/2.
 void verlet_second_half(Simulation& s) {

@@ -24,12 +24,12 @@ void index_partners(NeighbourList& list, std::size_t bodies) {
   for (std::size_t b = 0; b < bodies; ++b) list.in_offset[b + 1] += list.in_offset[b];
   list.in_pair.resize(pairs);
   list.old_offset.assign(list.in_offset.begin(), list.in_offset.end() - 1);  // fill cursor (scratch)
-  for (std::size_t q = 0; q < pairs; ++q) list.in_pair[list.old_offset[list.partner[q]]++] = static_cast<std::uint32_t>(q);
+  for (std::size_t q = 0; q < pairs; ++q)
+    list.in_pair[list.old_offset[list.partner[q]]++] = static_cast<std::uint32_t>(q);
 }
 
-void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y,
-             std::span<const double> radius, std::span<const double> inv_mass, std::size_t n,
-             double wall_offset) {
+void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y, std::span<const double> radius,
+             std::span<const double> inv_mass, std::size_t n, double wall_offset) {
   const std::size_t bodies = x.size();
   const std::uint32_t side = list.cells_per_side;
   const std::size_t cells = static_cast<std::size_t>(side) * side;
@@ -42,8 +42,8 @@ void rebuild(NeighbourList& list, std::span<const double> x, std::span<const dou
     const double fx = (x[b] - list.grid_lo) * inv_cell, fy = (y[b] - list.grid_lo) * inv_cell;
     if (!(fx >= 0 && fy >= 0 && fx < side && fy < side))
       throw std::runtime_error("body " + std::to_string(b) + (b < n ? " (grain)" : " (wall particle)") +
-                               " left the simulation domain or is not finite: position (" +
-                               std::to_string(x[b]) + ", " + std::to_string(y[b]) + ")");
+                               " left the simulation domain or is not finite: position (" + std::to_string(x[b]) +
+                               ", " + std::to_string(y[b]) + ")");
     const auto c = static_cast<std::uint32_t>(fy) * side + static_cast<std::uint32_t>(fx);
     list.body_cell[b] = c;
     ++list.cell_start[c + 1];

@@ -14,7 +14,7 @@
 namespace fnet::sim {
 
 struct NeighbourList {
-  std::vector<std::uint32_t> offset;   // n + 1
+  std::vector<std::uint32_t> offset;  // n + 1
   std::vector<std::uint32_t> partner;
   std::vector<double> hx, hy;          // tangential spring ξ (zero while not touching)
   std::vector<double> meff;            // reduced mass m̄ of the pair (fixed; computed at the build)
@@ -52,8 +52,7 @@ void setup_grid(NeighbourList& list, double lo, double hi, double max_diameter, 
 // list saved without them, such as a checkpoint).
 void index_partners(NeighbourList& list, std::size_t bodies);
 
-void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y,
-             std::span<const double> radius, std::span<const double> inv_mass, std::size_t n,
-             double wall_offset);
+void rebuild(NeighbourList& list, std::span<const double> x, std::span<const double> y, std::span<const double> radius,
+             std::span<const double> inv_mass, std::size_t n, double wall_offset);
 
 }  // namespace fnet::sim

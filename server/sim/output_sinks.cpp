@@ -1,8 +1,9 @@
 #include "server/sim/output_sinks.hpp"
 
 #include <chrono>
-#include <nlohmann/json.hpp>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 namespace fnet::sim {
 
@@ -42,13 +43,14 @@ void DdsSink::operator()(const RunFrame& frame) { publisher_.publish(frame); }
 void DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
   publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger_seconds);
-  while (std::chrono::steady_clock::now() < until && !should_stop()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  while (std::chrono::steady_clock::now() < until && !should_stop())
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
 RunFileSink::RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame)
-    : writer_(resume && std::filesystem::exists(path)
-                  ? std::make_unique<RunFileWriter>(RunFileWriter::reopen(path, static_cast<std::uint32_t>(first_frame)))
-                  : std::make_unique<RunFileWriter>(path, info)) {}
+    : writer_(resume && std::filesystem::exists(path) ? std::make_unique<RunFileWriter>(RunFileWriter::reopen(
+                                                            path, static_cast<std::uint32_t>(first_frame)))
+                                                      : std::make_unique<RunFileWriter>(path, info)) {}
 
 void RunFileSink::operator()(const RunFrame& frame) { writer_->append(frame); }
 

@@ -2,15 +2,15 @@
 // and the HDF5 run file. Both take the shared RunFrame, which run_frame() makes once per snapshot.
 #pragma once
 
-#include <dds/dds.h>
-
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
 
-#include "common/transport/frame_transport.hpp"
+#include <dds/dds.h>
+
 #include "common/store/run_file.hpp"
+#include "common/transport/frame_transport.hpp"
 #include "server/sim/params.hpp"
 #include "server/sim/snapshot.hpp"
 

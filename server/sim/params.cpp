@@ -47,9 +47,7 @@ void validate(const Params& p) {
   require(p.box / side >= 1.0, "box too small for the particles on a square lattice (spacing < d_ave)");
 }
 
-const char* to_string(Integrator integrator) {
-  return integrator == Integrator::gear ? "gear" : "verlet";
-}
+const char* to_string(Integrator integrator) { return integrator == Integrator::gear ? "gear" : "verlet"; }
 
 Integrator parse_integrator(const std::string& name) {
   if (name == "gear") return Integrator::gear;
@@ -69,23 +67,40 @@ void apply_json(Params& p, const nlohmann::json& config) {
         throw std::invalid_argument("config: '" + key + "' must be a non-negative integer");
       return value.get<std::uint64_t>();
     };
-    if (key == "particles") p.particles = count();
-    else if (key == "polydispersity") p.polydispersity = number();
-    else if (key == "mu") p.mu = number();
-    else if (key == "kn") p.kn = number();
-    else if (key == "en") p.en = number();
-    else if (key == "kt_ratio") p.kt_ratio = number();
-    else if (key == "compression_speed") p.compression_speed = number();
-    else if (key == "dt_divisor") p.dt_divisor = number();
-    else if (key == "rho_final") p.rho_final = number();
-    else if (key == "frames") p.frames = count();
-    else if (key == "seed") p.seed = count();
-    else if (key == "box") p.box = number();
-    else if (key == "wall_diameter") p.wall_diameter = number();
-    else if (key == "initial_speed") p.initial_speed = number();
-    else if (key == "relax_energy") p.relax_energy = number();
-    else if (key == "relax_max_time") p.relax_max_time = number();
-    else if (key == "skin") p.skin = number();
+    if (key == "particles")
+      p.particles = count();
+    else if (key == "polydispersity")
+      p.polydispersity = number();
+    else if (key == "mu")
+      p.mu = number();
+    else if (key == "kn")
+      p.kn = number();
+    else if (key == "en")
+      p.en = number();
+    else if (key == "kt_ratio")
+      p.kt_ratio = number();
+    else if (key == "compression_speed")
+      p.compression_speed = number();
+    else if (key == "dt_divisor")
+      p.dt_divisor = number();
+    else if (key == "rho_final")
+      p.rho_final = number();
+    else if (key == "frames")
+      p.frames = count();
+    else if (key == "seed")
+      p.seed = count();
+    else if (key == "box")
+      p.box = number();
+    else if (key == "wall_diameter")
+      p.wall_diameter = number();
+    else if (key == "initial_speed")
+      p.initial_speed = number();
+    else if (key == "relax_energy")
+      p.relax_energy = number();
+    else if (key == "relax_max_time")
+      p.relax_max_time = number();
+    else if (key == "skin")
+      p.skin = number();
     else if (key == "integrator") {
       if (!value.is_string()) throw std::invalid_argument("config: 'integrator' must be a string");
       p.integrator = parse_integrator(value.get<std::string>());

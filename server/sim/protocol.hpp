@@ -23,19 +23,19 @@ struct Progress {
   std::int64_t compress_steps = 0;
   std::size_t frames_done = 0, frames = 0;
   double rho = 0, z = 0;
-  double kinetic_energy = 0;       // per grain, m d² / τ_c²
-  double steps_per_second = 0;     // since the previous report
-  double eta_seconds = -1;         // of the compression; -1 while relaxing
+  double kinetic_energy = 0;    // per grain, m d² / τ_c²
+  double steps_per_second = 0;  // since the previous report
+  double eta_seconds = -1;      // of the compression; -1 while relaxing
 };
 
 struct RunOptions {
   std::string run_id = "fnet-simd";
-  FrameSink sink;                                          // every frame, in order
-  std::function<void(const Simulation&)> checkpoint;       // after every frame and every checkpoint_seconds
+  FrameSink sink;                                     // every frame, in order
+  std::function<void(const Simulation&)> checkpoint;  // after every frame and every checkpoint_seconds
   double checkpoint_seconds = 60;
-  std::function<void(const Progress&)> progress;           // every progress_seconds
+  std::function<void(const Progress&)> progress;  // every progress_seconds
   double progress_seconds = 2;
-  std::int64_t max_steps = -1;  // stop after this many steps of this call (tests), -1: run to the end
+  std::int64_t max_steps = -1;        // stop after this many steps of this call (tests), -1: run to the end
   std::function<bool()> should_stop;  // polled every 1024 steps (signals); true stops the run
   Workers* workers = nullptr;         // a team for the steps (same results), or none
 };

@@ -145,8 +145,7 @@ double elastic_energy(const Simulation& s) {
 double coordination(const Simulation& s) {
   std::size_t contacts = 0;
   const NeighbourList& l = s.list;
-  for (std::size_t p = 0; p < l.partner.size(); ++p)
-    contacts += (l.partner[p] < s.n && l.touching[p] && l.fn[p] > 0);
+  for (std::size_t p = 0; p < l.partner.size(); ++p) contacts += (l.partner[p] < s.n && l.touching[p] && l.fn[p] > 0);
   return s.n == 0 ? 0.0 : 2.0 * static_cast<double>(contacts) / static_cast<double>(s.n);
 }
 

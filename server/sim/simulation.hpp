@@ -33,8 +33,8 @@ struct Simulation {
   // Per body (grains then walls).
   std::vector<double> radius, inv_mass;
   std::array<std::vector<double>, kGearOrder> x, y, th;  // levels 0, 1: n + nw; levels >= 2: n
-  std::vector<double> fx, fy, torque;                     // forces of the last evaluation
-  std::vector<double> inv_inertia;                        // grains only
+  std::vector<double> fx, fy, torque;                    // forces of the last evaluation
+  std::vector<double> inv_inertia;                       // grains only
 
   // Wall particles: position at the start of the compression and inward direction (unit axis).
   std::vector<double> wall_x0, wall_y0, wall_dir_x, wall_dir_y;
@@ -73,8 +73,8 @@ class Workers;
 void step(Simulation& s, Workers* workers = nullptr);
 
 // Diagnostics, in internal units.
-double kinetic_energy(const Simulation& s);        // translational + rotational, grains
-double elastic_energy(const Simulation& s);        // Σ k_n x² / 2 over touching pairs
-double coordination(const Simulation& s);          // Z = 2 × grain–grain contacts with F_n > 0 / n
+double kinetic_energy(const Simulation& s);  // translational + rotational, grains
+double elastic_energy(const Simulation& s);  // Σ k_n x² / 2 over touching pairs
+double coordination(const Simulation& s);    // Z = 2 × grain–grain contacts with F_n > 0 / n
 
 }  // namespace fnet::sim

@@ -24,10 +24,12 @@ FrameSnapshot snapshot(const Simulation& s, const std::string& run_id, std::size
       if (!l.touching[p]) continue;
       const std::uint32_t j = l.partner[p];
       if (j < s.n) {
-        f.frame.contacts.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), l.fn[p], std::sqrt(l.ft2[p])});
+        f.frame.contacts.push_back(
+            {static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), l.fn[p], std::sqrt(l.ft2[p])});
       } else {
         const std::size_t k = j - s.n;
-        f.wall_contacts.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(k), s.wall_side[k], l.fn[p], std::sqrt(l.ft2[p])});
+        f.wall_contacts.push_back(
+            {static_cast<std::int64_t>(i), static_cast<std::int64_t>(k), s.wall_side[k], l.fn[p], std::sqrt(l.ft2[p])});
       }
     }
   }

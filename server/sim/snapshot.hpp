@@ -22,12 +22,12 @@ struct WallContact {
 
 struct FrameSnapshot {
   std::string run_id;
-  std::size_t index = 0;   // frame number within the compression, 0-based
-  std::int64_t step = 0;   // steps since the compression started
-  double time = 0;         // since the compression started, in τ_c
-  double rho = 0;          // Σ π r² / area of the free interior
-  double z = 0;            // 2 × grain–grain contacts with F_n > 0 / N
-  fnet::Frame frame;       // grains (x, y, r) and grain–grain contacts (i < j, signed F_n, |F_t|)
+  std::size_t index = 0;  // frame number within the compression, 0-based
+  std::int64_t step = 0;  // steps since the compression started
+  double time = 0;        // since the compression started, in τ_c
+  double rho = 0;         // Σ π r² / area of the free interior
+  double z = 0;           // 2 × grain–grain contacts with F_n > 0 / N
+  fnet::Frame frame;      // grains (x, y, r) and grain–grain contacts (i < j, signed F_n, |F_t|)
   std::vector<WallContact> wall_contacts;
 };
 

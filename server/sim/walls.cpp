@@ -17,10 +17,18 @@ void add_walls(Simulation& s) {
       const double t = static_cast<double>(k) * spacing;
       double x = 0, y = 0, dx = 0, dy = 0;
       switch (side) {
-        case 0: x = lo + t, y = lo, dy = 1; break;   // bottom, moves up
-        case 1: x = hi, y = lo + t, dx = -1; break;  // right, moves left
-        case 2: x = hi - t, y = hi, dy = -1; break;  // top, moves down
-        default: x = lo, y = hi - t, dx = 1; break;  // left, moves right
+        case 0:
+          x = lo + t, y = lo, dy = 1;
+          break;  // bottom, moves up
+        case 1:
+          x = hi, y = lo + t, dx = -1;
+          break;  // right, moves left
+        case 2:
+          x = hi - t, y = hi, dy = -1;
+          break;  // top, moves down
+        default:
+          x = lo, y = hi - t, dx = 1;
+          break;  // left, moves right
       }
       s.wall_x0.push_back(x);
       s.wall_y0.push_back(y);
@@ -34,9 +42,7 @@ void add_walls(Simulation& s) {
   s.nw = s.wall_x0.size();
 }
 
-double wall_offset(const Simulation& s) {
-  return static_cast<double>(s.compress_step) * s.c.dt * s.c.wall_speed;
-}
+double wall_offset(const Simulation& s) { return static_cast<double>(s.compress_step) * s.c.dt * s.c.wall_speed; }
 
 double interior_side(const Simulation& s) { return s.params.box - 2 * wall_offset(s); }
 

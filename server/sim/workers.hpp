@@ -40,8 +40,6 @@ class Workers {
 };
 
 // [begin, end) of part `part` of `parts` over [0, count), in equal shares.
-inline std::size_t share_begin(std::size_t count, unsigned part, unsigned parts) {
-  return count * part / parts;
-}
+inline std::size_t share_begin(std::size_t count, unsigned part, unsigned parts) { return count * part / parts; }
 
 }  // namespace fnet::sim

@@ -3,18 +3,18 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <stdexcept>
+#include <sys/wait.h>
 #include <thread>
 
 namespace fnet::e2e {
 
-Process::Process(const std::string& program, const std::vector<std::string>& args, const std::filesystem::path& stderr_file,
-                 const std::map<std::string, std::string>& env) {
+Process::Process(const std::string& program, const std::vector<std::string>& args,
+                 const std::filesystem::path& stderr_file, const std::map<std::string, std::string>& env) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe failed");
   std::vector<std::string> argv_storage{program};
@@ -51,7 +51,8 @@ std::optional<std::string> Process::read_line(std::chrono::milliseconds timeout)
       buffer_.erase(0, nl + 1);
       return line;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return std::nullopt;
     pollfd p{out_fd_, POLLIN, 0};
     if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;

@@ -3,13 +3,12 @@
 // a failing test never leaves a process behind.
 #pragma once
 
-#include <sys/types.h>
-
 #include <chrono>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
+#include <sys/types.h>
 #include <vector>
 
 namespace fnet::e2e {

@@ -1,7 +1,6 @@
 // fnet-server end to end, with real processes on loopback: frames published over DDS by
 // fnet-analyze publish (as fnet-simd streams them), the server analyzing and storing them, and
 // clients on its TCP port.
-#include <gtest/gtest.h>
 #include <signal.h>
 
 #include <cmath>
@@ -10,9 +9,11 @@
 #include <set>
 #include <thread>
 
+#include <gtest/gtest.h>
+
 #include "client/rpc_client.hpp"
-#include "common/store/analysis_store.hpp"
 #include "common/analysis/frame_analysis.hpp"
+#include "common/store/analysis_store.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -62,8 +63,8 @@ struct Server {
 };
 
 Server start_server(const fs::path& data_dir, int domain, const fs::path& log, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"--data-dir", data_dir.string(), "--port", "0", "--domain", std::to_string(domain),
-                                "--threads", "2"};
+  std::vector<std::string> args{"--data-dir", data_dir.string(),      "--port",    "0",
+                                "--domain",   std::to_string(domain), "--threads", "2"};
   args.insert(args.end(), extra.begin(), extra.end());
   Server s;
   s.process = std::make_unique<Process>(FNET_SERVER, args, log, dds_environment());
@@ -77,15 +78,17 @@ Server start_server(const fs::path& data_dir, int domain, const fs::path& log, s
 
 std::unique_ptr<Process> publish(const fs::path& run_dir, const std::string& run_id, int domain, const fs::path& log,
                                  double rate = 0, double linger = 0, double wait_for_reader = 30) {
-  return std::make_unique<Process>(FNET_ANALYZE,
-                                   std::vector<std::string>{"publish", "--csv-dir", run_dir.string(), "--run-id", run_id, "--domain",
-                                                            std::to_string(domain), "--rate", std::to_string(rate), "--linger",
-                                                            std::to_string(linger), "--wait-for-reader", std::to_string(wait_for_reader)},
-                                   log, dds_environment());
+  return std::make_unique<Process>(
+      FNET_ANALYZE,
+      std::vector<std::string>{"publish", "--csv-dir", run_dir.string(), "--run-id", run_id, "--domain",
+                               std::to_string(domain), "--rate", std::to_string(rate), "--linger",
+                               std::to_string(linger), "--wait-for-reader", std::to_string(wait_for_reader)},
+      log, dds_environment());
 }
 
 // Polls runs.list until `run` has `frames` committed and nothing pending.
-json wait_for_frames(unsigned short port, const std::string& run, std::size_t frames, std::chrono::seconds limit = 120s) {
+json wait_for_frames(unsigned short port, const std::string& run, std::size_t frames,
+                     std::chrono::seconds limit = 120s) {
   RpcClient rpc("127.0.0.1", port);
   const auto deadline = std::chrono::steady_clock::now() + limit;
   json last;
@@ -101,8 +104,10 @@ json wait_for_frames(unsigned short port, const std::string& run, std::size_t fr
   throw std::runtime_error("run " + run + " did not reach " + std::to_string(frames) + " frames: " + last.dump());
 }
 
-StoredRun offline_store(const fs::path& run_dir, const std::string& run_id, const fs::path& data_dir, const fs::path& log) {
-  Process p(FNET_ANALYZE, {"store", "--csv-dir", run_dir.string(), "--run-id", run_id, "--data-dir", data_dir.string()}, log);
+StoredRun offline_store(const fs::path& run_dir, const std::string& run_id, const fs::path& data_dir,
+                        const fs::path& log) {
+  Process p(FNET_ANALYZE, {"store", "--csv-dir", run_dir.string(), "--run-id", run_id, "--data-dir", data_dir.string()},
+            log);
   EXPECT_EQ(p.wait(300s), 0) << "fnet-analyze store failed; see " << log;
   return read_store(store_path(data_dir, run_id));
 }
@@ -113,7 +118,8 @@ void expect_series_match(unsigned short port, const std::string& run, const Stor
   for (const Metric metric : kMetrics)
     for (int dim = 0; dim < 2; ++dim)
       for (const ForceKind force : kForces) {
-        const json s = rpc.call("series.get", {{"run", run}, {"metric", to_string(metric)}, {"dim", dim}, {"force", to_string(force)}});
+        const json s = rpc.call(
+            "series.get", {{"run", run}, {"metric", to_string(metric)}, {"dim", dim}, {"force", to_string(force)}});
         ASSERT_EQ(s["frame"].size(), offline.frames.size());
         for (std::size_t k = 0; k < offline.frames.size(); ++k) {
           const AnalyzedFrame& f = offline.frames[k];
@@ -125,7 +131,8 @@ void expect_series_match(unsigned short port, const std::string& run, const Stor
           }
           EXPECT_EQ(s["previous"][k], *f.previous);
           EXPECT_EQ(s["value"][k].get<double>(), f.distances(metric, dim, force))
-              << run << " " << to_string(metric) << " pd" << dim << " " << to_string(force) << " frame " << f.header.index;
+              << run << " " << to_string(metric) << " pd" << dim << " " << to_string(force) << " frame "
+              << f.header.index;
         }
       }
 }
@@ -142,8 +149,10 @@ TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
   expect_series_match(server.port, "live", offline);
 
   // fnetctl --format json: one object with equal-length arrays frame, rho, value.
-  Process ctl(FNETCTL, {"--port", std::to_string(server.port), "query", "--metric", "wasserstein2", "--run", "live", "--format", "json"},
-              tmp.path() / "fnetctl.log");
+  Process ctl(
+      FNETCTL,
+      {"--port", std::to_string(server.port), "query", "--metric", "wasserstein2", "--run", "live", "--format", "json"},
+      tmp.path() / "fnetctl.log");
   ASSERT_EQ(ctl.wait(30s), 0);
   const json q = json::parse(ctl.read_rest());
   ASSERT_EQ(q["frame"].size(), 6u);
@@ -159,7 +168,9 @@ TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
   const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3});
   auto pub = publish(run_dir, "early", 32, tmp.path() / "publish.log", 0, 60, 0);
   // The publisher has written everything (no reader exists yet) before the server starts.
-  const auto reported = [&] { return fs::exists(tmp.path() / "publish.log") && fs::file_size(tmp.path() / "publish.log") > 0; };
+  const auto reported = [&] {
+    return fs::exists(tmp.path() / "publish.log") && fs::file_size(tmp.path() / "publish.log") > 0;
+  };
   for (int k = 0; k < 300 && !reported(); ++k) std::this_thread::sleep_for(50ms);
   ASSERT_TRUE(reported()) << "publisher never reported";
   Server server = start_server(tmp.path() / "data", 32, tmp.path() / "server.log");
@@ -235,7 +246,12 @@ TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
     std::vector<std::string> rows;
     for (std::string line; std::getline(in, line);) rows.push_back(line);
     std::ofstream out(run_dir / "index.csv");
-    out << rows[0] << "\n" << rows[1] << "\n" << rows[3] << "\n" << rows[2] << "\n" << rows[4] << "\n" << rows[3] << "\n";
+    out << rows[0] << "\n"
+        << rows[1] << "\n"
+        << rows[3] << "\n"
+        << rows[2] << "\n"
+        << rows[4] << "\n"
+        << rows[3] << "\n";
   }
   Server server = start_server(tmp.path() / "data", 38, tmp.path() / "server.log");
   auto pub = publish(run_dir, "shuffled", 38, tmp.path() / "publish.log");
@@ -246,9 +262,10 @@ TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
   RpcClient rpc("127.0.0.1", server.port);
   const json series = rpc.call("series.get", {{"run", "shuffled"}, {"metric", "wasserstein1"}, {"dim", 1}});
   EXPECT_EQ(series["frame"], json({0, 1, 2, 3}));
-  EXPECT_EQ(series["previous"], json({nullptr, 0, 1, 2}));  // distances between consecutive frames, whatever the arrival order
-  const StoredRun offline = offline_store(make_run(tmp.path(), "ordered", {0, 1, 2, 3}), "shuffled", tmp.path() / "offline",
-                                          tmp.path() / "store.log");
+  EXPECT_EQ(series["previous"],
+            json({nullptr, 0, 1, 2}));  // distances between consecutive frames, whatever the arrival order
+  const StoredRun offline = offline_store(make_run(tmp.path(), "ordered", {0, 1, 2, 3}), "shuffled",
+                                          tmp.path() / "offline", tmp.path() / "store.log");
   expect_series_match(server.port, "shuffled", offline);
 }
 
@@ -267,16 +284,21 @@ TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
   expect_series_match(server.port, "run-b", offline_store(b, "run-b", tmp.path() / "offline", tmp.path() / "sb.log"));
   // And across runs: frame 0 of b is frame 5 of the LAMMPS run, frame 2 of a is frame 2: distinct.
   RpcClient rpc("127.0.0.1", server.port);
-  const json d = rpc.call("distance.get", {{"run", "run-a"}, {"frame", 3}, {"other_run", "run-b"}, {"other_frame", 2}, {"metric", "bottleneck"}});
+  const json d =
+      rpc.call("distance.get",
+               {{"run", "run-a"}, {"frame", 3}, {"other_run", "run-b"}, {"other_frame", 2}, {"metric", "bottleneck"}});
   EXPECT_EQ(d["value"].get<double>(), 0.0);  // both are LAMMPS frame 3
-  const json e = rpc.call("distance.get", {{"run", "run-a"}, {"frame", 0}, {"other_run", "run-b"}, {"other_frame", 0}, {"metric", "bottleneck"}});
+  const json e =
+      rpc.call("distance.get",
+               {{"run", "run-a"}, {"frame", 0}, {"other_run", "run-b"}, {"other_frame", 0}, {"metric", "bottleneck"}});
   EXPECT_GT(e["value"].get<double>(), 0.0);
 }
 
 TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   testing::TempDir tmp;
-  Server server = start_server(tmp.path() / "data", 36, tmp.path() / "server.log",
-                               {"--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
+  Server server =
+      start_server(tmp.path() / "data", 36, tmp.path() / "server.log",
+                   {"--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
   const auto raw = [&](const std::string& text) {
     boost::asio::io_context io;
     boost::asio::ip::tcp::socket s(io);
@@ -291,11 +313,21 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   };
   const auto error_code = [](const std::string& line) { return json::parse(line)["error"]["code"].get<int>(); };
   EXPECT_EQ(error_code(raw("{not json\n")), -32700);
-  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"no.such"})" "\n")), -32601);
-  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"series.get","params":{"metric":42}})" "\n")), -32602);
-  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"diagram.get","params":{"frame":"x"}})" "\n")), -32602);
-  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"1.0","id":1,"method":"runs.list"})" "\n")), -32600);
-  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"run.get","params":{"run":"nope"}})" "\n")), -32001);
+  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"no.such"})"
+                           "\n")),
+            -32601);
+  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"series.get","params":{"metric":42}})"
+                           "\n")),
+            -32602);
+  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"diagram.get","params":{"frame":"x"}})"
+                           "\n")),
+            -32602);
+  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"1.0","id":1,"method":"runs.list"})"
+                           "\n")),
+            -32600);
+  EXPECT_EQ(error_code(raw(R"({"jsonrpc":"2.0","id":1,"method":"run.get","params":{"run":"nope"}})"
+                           "\n")),
+            -32001);
   // A 10 MB line: an error, then the connection closes.
   EXPECT_EQ(error_code(raw(std::string(10 << 20, 'x') + "\n")), -32600);
 
@@ -327,7 +359,8 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   // A client that never reads: it asks for much more than the output bound and is dropped.
   boost::asio::ip::tcp::socket hog(io);
   hog.connect({boost::asio::ip::make_address("127.0.0.1"), server.port});
-  const std::string request = R"({"jsonrpc":"2.0","id":1,"method":"server.status"})" "\n";
+  const std::string request = R"({"jsonrpc":"2.0","id":1,"method":"server.status"})"
+                              "\n";
   std::string flood;
   for (int k = 0; k < 20000; ++k) flood += request;
   boost::system::error_code ec;

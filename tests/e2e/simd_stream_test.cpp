@@ -1,15 +1,15 @@
 // fnet-simd streaming for real: a subscriber on loopback receives every frame of a short run
 // bit-exact (the HDF5 run file written alongside is the reference), and fnet-server's series for
 // that run equals the offline analysis of the run file.
-#include <gtest/gtest.h>
-
 #include <regex>
 #include <thread>
 
+#include <gtest/gtest.h>
+
 #include "client/rpc_client.hpp"
 #include "common/store/analysis_store.hpp"
-#include "common/transport/frame_transport.hpp"
 #include "common/store/run_file.hpp"
+#include "common/transport/frame_transport.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/support/run_frame_compare.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -24,8 +24,25 @@ using testing::expect_bit_exact;
 
 // A short, fast compression: 150 disks at 40x the paper's wall speed, 8 frames.
 std::vector<std::string> small_run(const std::string& run_id, int domain, const fs::path& out) {
-  return {"--particles", "150", "--box", "13.7", "--compression-speed", "2e-3", "--frames", "8", "--seed", "11",
-          "--run-id", run_id, "--domain", std::to_string(domain), "--out", out.string(), "--linger", "30", "--quiet"};
+  return {"--particles",
+          "150",
+          "--box",
+          "13.7",
+          "--compression-speed",
+          "2e-3",
+          "--frames",
+          "8",
+          "--seed",
+          "11",
+          "--run-id",
+          run_id,
+          "--domain",
+          std::to_string(domain),
+          "--out",
+          out.string(),
+          "--linger",
+          "30",
+          "--quiet"};
 }
 
 TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
@@ -92,14 +109,18 @@ TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {
   ASSERT_EQ(run["frames"], 8) << "see " << (tmp.path() / "server.log");
   EXPECT_EQ(run["planned_frames"], 8);
   simd.stop();
-  Process offline(FNET_ANALYZE, {"store", "--run-file", (tmp.path() / "run.h5").string(), "--data-dir", (tmp.path() / "offline").string()},
-                  tmp.path() / "offline.log");
+  Process offline(
+      FNET_ANALYZE,
+      {"store", "--run-file", (tmp.path() / "run.h5").string(), "--data-dir", (tmp.path() / "offline").string()},
+      tmp.path() / "offline.log");
   ASSERT_EQ(offline.wait(300s), 0);
   const StoredRun expected = read_store(store_path(tmp.path() / "offline", "sim"));
   ASSERT_EQ(expected.frames.size(), 8u);
-  const client::json series = rpc.call("series.get", {{"run", "sim"}, {"metric", "wasserstein1"}, {"dim", 1}, {"force", "tangential"}});
+  const client::json series =
+      rpc.call("series.get", {{"run", "sim"}, {"metric", "wasserstein1"}, {"dim", 1}, {"force", "tangential"}});
   for (std::size_t k = 1; k < 8; ++k)
-    EXPECT_EQ(series["value"][k].get<double>(), expected.frames[k].distances(Metric::wasserstein1, 1, ForceKind::tangential));
+    EXPECT_EQ(series["value"][k].get<double>(),
+              expected.frames[k].distances(Metric::wasserstein1, 1, ForceKind::tangential));
   EXPECT_EQ(server.stop(), 0);
 }
 

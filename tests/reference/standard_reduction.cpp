@@ -19,8 +19,7 @@ std::vector<std::optional<std::size_t>> reduce_lowest_rows(std::vector<Column> b
     while (!column.empty() && column_with_lowest[column.back()]) {
       const Column& other = boundary[*column_with_lowest[column.back()]];
       sum.clear();
-      std::set_symmetric_difference(column.begin(), column.end(), other.begin(), other.end(),
-                                    std::back_inserter(sum));
+      std::set_symmetric_difference(column.begin(), column.end(), other.begin(), other.end(), std::back_inserter(sum));
       column.swap(sum);
     }
     if (column.empty()) continue;

@@ -35,8 +35,10 @@ Graph square_lattice(std::size_t rows, std::size_t cols, double keep, double dia
       if (c + 1 < cols && coin(keep, rng)) add(g, site(r, c), site(r, c + 1));
       if (r + 1 < rows && coin(keep, rng)) add(g, site(r, c), site(r + 1, c));
       if (r + 1 < rows && c + 1 < cols && coin(diagonal, rng)) {
-        if (coin(0.5, rng)) add(g, site(r, c), site(r + 1, c + 1));
-        else add(g, site(r, c + 1), site(r + 1, c));
+        if (coin(0.5, rng))
+          add(g, site(r, c), site(r + 1, c + 1));
+        else
+          add(g, site(r, c + 1), site(r + 1, c));
       }
     }
   return g;

@@ -57,8 +57,10 @@ FrameDiagrams fast_path(const Frame& frame, ForceKind kind) { return compute_per
   if (!(std::fabs(network.mean_force - own_mean) <= 1e-15 * own_mean))
     why << "mean force differs: fast " << network.mean_force << ", reference " << own_mean << "\n";
   const reference::Diagrams ref = reference::persistence(frame, kind, network.mean_force);
-  if (fast.pd0 != ref.pd0) why << "PD0 differs\n  fast:      " << describe(fast.pd0) << "\n  reference: " << describe(ref.pd0) << "\n";
-  if (fast.pd1 != ref.pd1) why << "PD1 differs\n  fast:      " << describe(fast.pd1) << "\n  reference: " << describe(ref.pd1) << "\n";
+  if (fast.pd0 != ref.pd0)
+    why << "PD0 differs\n  fast:      " << describe(fast.pd0) << "\n  reference: " << describe(ref.pd0) << "\n";
+  if (fast.pd1 != ref.pd1)
+    why << "PD1 differs\n  fast:      " << describe(fast.pd1) << "\n  reference: " << describe(ref.pd1) << "\n";
   if (fast.vertices != ref.vertices || fast.edges != ref.edges || fast.triangles != ref.triangles)
     why << "counts differ: fast " << fast.vertices << "/" << fast.edges << "/" << fast.triangles << ", reference "
         << ref.vertices << "/" << ref.edges << "/" << ref.triangles << " (vertices/edges/triangles)\n";
@@ -72,7 +74,8 @@ FrameDiagrams fast_path(const Frame& frame, ForceKind kind) { return compute_per
     return std::fabs(x - y) <= tolerance * std::max(std::fabs(x), std::fabs(y));
   };
   bool same = a.size() == b.size();
-  for (std::size_t k = 0; same && k < a.size(); ++k) same = close(a[k].birth, b[k].birth) && close(a[k].death, b[k].death);
+  for (std::size_t k = 0; same && k < a.size(); ++k)
+    same = close(a[k].birth, b[k].birth) && close(a[k].death, b[k].death);
   if (same) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << describe(a) << "\n  vs " << describe(b) << "\n  (relative tolerance "
                                        << tolerance << ")";

@@ -1,10 +1,10 @@
 // Assertions shared by the persistence tests: fast path vs reference, and diagrams up to a tolerance.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <ostream>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "common/topology/diagram.hpp"
 #include "common/topology/force_network.hpp"

@@ -8,7 +8,9 @@
 namespace fnet::testing {
 namespace {
 
-bool close(double x, double y, double relative) { return std::fabs(x - y) <= relative * std::max(std::fabs(x), std::fabs(y)); }
+bool close(double x, double y, double relative) {
+  return std::fabs(x - y) <= relative * std::max(std::fabs(x), std::fabs(y));
+}
 
 bool close(const PersistencePoint& p, const PersistencePoint& q, double relative) {
   return close(p.birth, q.birth, relative) && close(p.death, q.death, relative);
@@ -16,7 +18,8 @@ bool close(const PersistencePoint& p, const PersistencePoint& q, double relative
 
 void describe(std::ostringstream& s, const char* side, const Diagram& points) {
   s << "\n  only in " << side << " (" << points.size() << "):";
-  for (std::size_t k = 0; k < points.size() && k < 12; ++k) s << " (" << points[k].birth << ", " << points[k].death << ")";
+  for (std::size_t k = 0; k < points.size() && k < 12; ++k)
+    s << " (" << points[k].birth << ", " << points[k].death << ")";
   if (points.size() > 12) s << " ...";
 }
 
@@ -37,7 +40,8 @@ std::string diagram_mismatch(const Diagram& a, const Diagram& b, double relative
   for (const PersistencePoint& p : x) {
     const double slack = relative * std::fabs(p.birth);
     // y is in birth-descending order: the window starts at the first birth <= p.birth + slack.
-    auto it = std::partition_point(y.begin(), y.end(), [&](const PersistencePoint& q) { return q.birth > p.birth + slack; });
+    auto it =
+        std::partition_point(y.begin(), y.end(), [&](const PersistencePoint& q) { return q.birth > p.birth + slack; });
     bool found = false;
     for (; it != y.end() && it->birth >= p.birth - slack - relative * std::fabs(it->birth); ++it) {
       const auto k = static_cast<std::size_t>(it - y.begin());

@@ -8,8 +8,8 @@
 namespace fnet::testing {
 
 Frame shuffled_rows(Frame frame, std::mt19937_64& rng);
-Frame reversed_pairs(Frame frame);                       // every contact (i, j) written as (j, i)
-Frame relabelled(Frame frame, std::mt19937_64& rng);     // particles renamed by a random permutation
-Frame scaled(Frame frame, double factor);                // fn and ft multiplied by factor
+Frame reversed_pairs(Frame frame);                    // every contact (i, j) written as (j, i)
+Frame relabelled(Frame frame, std::mt19937_64& rng);  // particles renamed by a random permutation
+Frame scaled(Frame frame, double factor);             // fn and ft multiplied by factor
 
 }  // namespace fnet::testing

@@ -43,8 +43,7 @@ FrameDiagrams gudhi_persistence(std::size_t vertex_count, std::span<const Edge> 
   Graph graph(vertex_count);
   for (std::size_t v = 0; v < vertex_count; ++v)
     boost::put(Gudhi::vertex_filtration_t(), graph, static_cast<int>(v), -vertex_value[v]);
-  for (const Edge& e : edges)
-    boost::add_edge(static_cast<int>(e.u), static_cast<int>(e.v), -e.value, graph);
+  for (const Edge& e : edges) boost::add_edge(static_cast<int>(e.u), static_cast<int>(e.v), -e.value, graph);
 
   Tree tree;
   tree.insert_graph(graph);

@@ -44,13 +44,20 @@ Frame frame_from_graph(const Graph& graph, const ForceStyle& style, std::size_t 
 
 ForceStyle random_style(std::mt19937_64& rng) {
   switch (std::uniform_int_distribution<int>(0, 6)(rng)) {
-    case 0: return {};
-    case 1: return {2, 0, 0, 0};
-    case 2: return {3, 0.1, 0.2, 0};
-    case 3: return {1, 0, 0, 0};  // a single distinct value
-    case 4: return {0, 0.3, 0, 0};
-    case 5: return {2, 0, 0, 2};  // near-ties
-    default: return {0, 0.05, 0.4, 0};
+    case 0:
+      return {};
+    case 1:
+      return {2, 0, 0, 0};
+    case 2:
+      return {3, 0.1, 0.2, 0};
+    case 3:
+      return {1, 0, 0, 0};  // a single distinct value
+    case 4:
+      return {0, 0.3, 0, 0};
+    case 5:
+      return {2, 0, 0, 2};  // near-ties
+    default:
+      return {0, 0.05, 0.4, 0};
   }
 }
 

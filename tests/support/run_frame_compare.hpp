@@ -2,9 +2,9 @@
 // contact), for the tests of the outputs that must carry frames unchanged: DDS and the run file.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cstring>
+
+#include <gtest/gtest.h>
 
 #include "common/analysis/run_frame.hpp"
 

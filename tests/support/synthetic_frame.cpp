@@ -25,22 +25,25 @@ class Rng {
   std::uint64_t state_;
 };
 
-constexpr double kSpacing = 0.935;               // tuned with kJitter for mean degree ~4.2
-constexpr double kJitter = 0.087;                // half-width of the uniform jitter (sd ~0.05)
+constexpr double kSpacing = 0.935;  // tuned with kJitter for mean degree ~4.2
+constexpr double kJitter = 0.087;   // half-width of the uniform jitter (sd ~0.05)
 constexpr double kMinRadius = 0.4, kMaxRadius = 0.6;
-constexpr double kReach = 2 * kMaxRadius;        // no contact is longer than this
+constexpr double kReach = 2 * kMaxRadius;  // no contact is longer than this
 
 std::vector<Particle> place_particles(const SyntheticOptions& opt, Rng& rng) {
   const std::size_t n = opt.particles;
-  const auto interstitials = std::min(n / 4, static_cast<std::size_t>(std::llround(opt.interstitial_fraction * static_cast<double>(n))));
+  const auto interstitials =
+      std::min(n / 4, static_cast<std::size_t>(std::llround(opt.interstitial_fraction * static_cast<double>(n))));
   const std::size_t sites = n - interstitials;
-  const auto cols = std::max<std::size_t>(2, static_cast<std::size_t>(std::llround(std::sqrt(static_cast<double>(sites) * 2 / std::sqrt(3.0)))));
+  const auto cols = std::max<std::size_t>(
+      2, static_cast<std::size_t>(std::llround(std::sqrt(static_cast<double>(sites) * 2 / std::sqrt(3.0)))));
   const double row_height = kSpacing * std::sqrt(3.0) / 2;
 
   std::vector<Particle> at(n);
   for (std::size_t k = 0; k < sites; ++k) {
     const std::size_t r = k / cols, c = k % cols;
-    at[k].x = (static_cast<double>(c) + 0.5 * static_cast<double>(r % 2)) * kSpacing + kJitter * (2 * rng.uniform() - 1);
+    at[k].x =
+        (static_cast<double>(c) + 0.5 * static_cast<double>(r % 2)) * kSpacing + kJitter * (2 * rng.uniform() - 1);
     at[k].y = static_cast<double>(r) * row_height + kJitter * (2 * rng.uniform() - 1);
   }
   // An interstitial sits at the centroid of an upward lattice triangle (site, right, upper).
@@ -72,8 +75,10 @@ std::vector<Contact> find_contacts(const std::vector<Particle>& p) {
   std::vector<Contact> contacts;
   if (p.empty()) return contacts;
   double x0 = p[0].x, y0 = p[0].y, x1 = x0, y1 = y0;
-  for (const Particle& q : p) x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
-  const auto nx = static_cast<std::size_t>((x1 - x0) / kReach) + 1, ny = static_cast<std::size_t>((y1 - y0) / kReach) + 1;
+  for (const Particle& q : p)
+    x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
+  const auto nx = static_cast<std::size_t>((x1 - x0) / kReach) + 1,
+             ny = static_cast<std::size_t>((y1 - y0) / kReach) + 1;
   const auto cell_of = [&](const Particle& q) {
     return static_cast<std::size_t>((q.y - y0) / kReach) * nx + static_cast<std::size_t>((q.x - x0) / kReach);
   };
@@ -114,18 +119,18 @@ void assign_forces(std::vector<Contact>& contacts, const SyntheticOptions& opt, 
     if (opt.force_levels > 0)
       c.fn = 2 * std::ceil(u * opt.force_levels) / opt.force_levels;
     else
-      c.fn = -std::log1p(-u);                       // exponential, mean 1
+      c.fn = -std::log1p(-u);  // exponential, mean 1
     if (kind < opt.tie_fraction && k > 0)
-      c.fn = contacts[rng.below(k)].fn;               // an exact tie
+      c.fn = contacts[rng.below(k)].fn;  // an exact tie
     else if (kind > 0.999)
-      c.fn = 0;                                        // touching, no force: not an edge
+      c.fn = 0;  // touching, no force: not an edge
     else if (kind > 0.996)
-      c.fn = -0.05 * u;                                // a damped contact, slightly tensile
+      c.fn = -0.05 * u;  // a damped contact, slightly tensile
     const double t = rng.uniform();
     if (t < 0.05)
-      c.ft = 0;                                        // no tangential load: not an edge
+      c.ft = 0;  // no tangential load: not an edge
     else if (t < 0.13)
-      c.ft = 0.5 * std::fabs(c.fn);                    // sliding at the Coulomb cap (mu = 0.5)
+      c.ft = 0.5 * std::fabs(c.fn);  // sliding at the Coulomb cap (mu = 0.5)
     else
       c.ft = 0.5 * std::fabs(c.fn) * rng.uniform();
   }

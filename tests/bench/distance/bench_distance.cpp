@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/distance/bottleneck.hpp"
 #include "common/codec/diagram_json.hpp"
+#include "common/distance/bottleneck.hpp"
 #include "common/distance/wasserstein.hpp"
 
 using namespace fnet;
@@ -23,8 +23,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   for (int k = 1; k < argc; ++k) {
     const std::string arg = argv[k];
-    if (arg == "--repeat" && k + 1 < argc) repeat = std::max(1, std::atoi(argv[++k]));
-    else files.push_back(arg);
+    if (arg == "--repeat" && k + 1 < argc)
+      repeat = std::max(1, std::atoi(argv[++k]));
+    else
+      files.push_back(arg);
   }
   if (files.empty() || files.size() % 2) {
     std::fprintf(stderr, "usage: bench_distance [--repeat R] A.json B.json [...]\n");
@@ -35,8 +37,8 @@ int main(int argc, char** argv) {
     const nlohmann::json j = nlohmann::json::parse(in);
     return diagram_from_json(j.at(dim ? "pd1" : "pd0"));
   };
-  std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s\n", "pair", "dim", "pts", "metric", "ms", "value",
-              "augment", "settled/boxes");
+  std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s\n", "pair", "dim", "pts", "metric", "ms", "value", "augment",
+              "settled/boxes");
   for (std::size_t f = 0; f < files.size(); f += 2) {
     double pair_total = 0;
     for (int dim = 0; dim < 2; ++dim) {
@@ -53,9 +55,14 @@ int main(int argc, char** argv) {
         std::sort(times.begin(), times.end());
         const double t = times[times.size() / 2];
         pair_total += t;
-        const std::string name = files[f].substr(files[f].rfind('/') + 1) + "->" + files[f + 1].substr(files[f + 1].rfind('/') + 1);
-        std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu\n", name.c_str(), dim, std::max(a.size(), b.size()),
-                    q == 0 ? "bottleneck" : q == 1 ? "W1" : "W2", t * 1e3, value, st.augmentations, st.settled, st.boxes_opened);
+        const std::string name =
+            files[f].substr(files[f].rfind('/') + 1) + "->" + files[f + 1].substr(files[f + 1].rfind('/') + 1);
+        std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu\n", name.c_str(), dim,
+                    std::max(a.size(), b.size()),
+                    q == 0   ? "bottleneck"
+                    : q == 1 ? "W1"
+                             : "W2",
+                    t * 1e3, value, st.augmentations, st.settled, st.boxes_opened);
       }
     }
     std::printf("  six distances of this file pair: %.2f ms\n", pair_total * 1e3);

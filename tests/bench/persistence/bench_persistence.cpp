@@ -1,7 +1,5 @@
 // fnet's PD0 + PD1 against GUDHI's on the same synthetic packings, side by side: time, peak
 // memory (each side in its own forked child), and a check that both give the same diagrams.
-#include <boost/program_options.hpp>
-
 #include <malloc.h>
 
 #include <cstdio>
@@ -9,6 +7,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <boost/program_options.hpp>
 
 #include "common/topology/force_network.hpp"
 #include "common/topology/persistence.hpp"
@@ -42,7 +42,7 @@ void steady_state_malloc() {
 enum class Side { fnet, gudhi };
 
 struct Measurement {
-  bool ran = false;          // false: skipped
+  bool ran = false;  // false: skipped
   bool ok = false;
   std::string failure;
   Timing timing;
@@ -88,10 +88,12 @@ Measurement measure(Side side, const std::vector<Frame>& frames, const std::vect
       }
     std::size_t next = 0;
     std::vector<FrameDiagrams> result(kinds.size());  // a service keeps what it computed
-    const Timing timing = median_time([&] {
-      const std::size_t f = next++ % frames.size();
-      for (std::size_t k = 0; k < kinds.size(); ++k) result[k] = diagrams(f, k);
-    }, budget_s);
+    const Timing timing = median_time(
+        [&] {
+          const std::size_t f = next++ % frames.size();
+          for (std::size_t k = 0; k < kinds.size(); ++k) result[k] = diagrams(f, k);
+        },
+        budget_s);
     std::fwrite(&timing, sizeof timing, 1, out);
   });
   Measurement m;
@@ -180,7 +182,8 @@ void run(const Options& opt) {
     for (std::size_t f = 0; f < distinct_frames(n); ++f) {
       frames.push_back(testing::synthetic_frame({.particles = n, .seed = opt.seed + f}));
       validate(frames.back());
-      frame_bytes += frames.back().particles.size() * sizeof(Particle) + frames.back().contacts.size() * sizeof(Contact);
+      frame_bytes +=
+          frames.back().particles.size() * sizeof(Particle) + frames.back().contacts.size() * sizeof(Contact);
     }
     const long frames_kib = static_cast<long>(frame_bytes / 1024);
     const long idle_kib = run_in_child([](std::FILE*) {}).peak_rss_kib;
@@ -202,7 +205,8 @@ void run(const Options& opt) {
       const std::string pd = verdict(ours, theirs, reports);
       for (std::size_t r = before; r < reports.size(); ++r) reports[r] = "N=" + std::to_string(n) + ": " + reports[r];
       char ratio[32] = "-";
-      if (ours.ok && theirs.ok) std::snprintf(ratio, sizeof ratio, "%.1fx", theirs.timing.median_ms / ours.timing.median_ms);
+      if (ours.ok && theirs.ok)
+        std::snprintf(ratio, sizeof ratio, "%.1fx", theirs.timing.median_ms / ours.timing.median_ms);
       const auto with_runs = [](const Measurement& m) {
         return m.ok ? cell(m, false) + " (" + std::to_string(m.timing.runs) + ")" : cell(m, false);
       };
@@ -236,8 +240,8 @@ int main(int argc, char** argv) {
   fnet::bench::Options opt;
   std::string sizes;
   po::options_description desc("bench_persistence: fnet vs GUDHI, PD0 + PD1 of synthetic packings");
-  desc.add_options()("help,h", "this text")(
-      "sizes", po::value(&sizes)->default_value("2000,20000,200000,2000000"), "comma-separated particle counts")(
+  desc.add_options()("help,h", "this text")("sizes", po::value(&sizes)->default_value("2000,20000,200000,2000000"),
+                                            "comma-separated particle counts")(
       "gudhi-max", po::value(&opt.gudhi_max)->default_value(2000000), "skip GUDHI above this many particles")(
       "budget", po::value(&opt.budget_s)->default_value(1.0), "seconds of repeated runs per measurement")(
       "seed", po::value(&opt.seed)->default_value(1), "seed of the synthetic frames")(

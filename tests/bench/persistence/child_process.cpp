@@ -1,12 +1,12 @@
 #include "tests/bench/persistence/child_process.hpp"
 
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <exception>
 #include <stdexcept>
+#include <sys/resource.h>
+#include <sys/wait.h>
 
 namespace fnet::bench {
 

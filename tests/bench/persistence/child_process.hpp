@@ -9,8 +9,8 @@ namespace fnet::bench {
 
 struct ChildRun {
   bool ok = false;
-  std::string failure;        // "exit 1", "killed by signal 9", ... when !ok
-  long peak_rss_kib = 0;      // the child's ru_maxrss from wait4: inherited pages count too
+  std::string failure;          // "exit 1", "killed by signal 9", ... when !ok
+  long peak_rss_kib = 0;        // the child's ru_maxrss from wait4: inherited pages count too
   std::FILE* output = nullptr;  // what the child wrote, rewound; the caller closes it
 };
 

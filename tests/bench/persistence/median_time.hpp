@@ -36,7 +36,8 @@ Timing median_time(Work work, double budget_s) {
   const double first = timed(1);
   if (first > budget_s * 1e3) return {first, 1};
   const std::size_t batch = std::max<std::size_t>(1, static_cast<std::size_t>(1.0 / std::max(first, 1e-3)));
-  const std::size_t batches = std::clamp<std::size_t>(static_cast<std::size_t>(budget_s * 1e3 / (first * static_cast<double>(batch))), 3, 301);
+  const std::size_t batches =
+      std::clamp<std::size_t>(static_cast<std::size_t>(budget_s * 1e3 / (first * static_cast<double>(batch))), 3, 301);
   std::vector<double> ms(batches);
   for (double& t : ms) t = timed(batch) / static_cast<double>(batch);
   std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(batches / 2), ms.end());

@@ -72,7 +72,7 @@ Simulation dense_packing(Integrator integrator, double divisor) {
   Simulation s = make_lattice(p);
   RunOptions o;
   run(s, o);
-  s.params.integrator = integrator;  // switch integrator and step for the timing only
+  s.params.integrator = integrator;                    // switch integrator and step for the timing only
   const double ratio = s.params.dt_divisor / divisor;  // new Δt / old Δt: rescale Gear's scaled derivatives
   for (int k = 1; k < kGearOrder; ++k) {
     const double f = std::pow(ratio, k);
@@ -101,9 +101,10 @@ void thread_table() {
   Simulation fast = dense_packing(Integrator::gear, 50);  // compressed on at 10x the speed: deep overlaps
   fast.params.compression_speed = 1e-2;
   fast.c.wall_speed = fast.params.compression_speed / fast.c.tau_c;
-  const std::pair<const char*, Simulation> states[] = {{"packing at rho 0.80, v_c = 1e-3", dense_packing(Integrator::gear, 50)},
-                                                       {"packing from rho 0.80, v_c = 1e-2", fast},
-                                                       {"fresh lattice, relaxing", make_lattice(lattice)}};
+  const std::pair<const char*, Simulation> states[] = {
+      {"packing at rho 0.80, v_c = 1e-3", dense_packing(Integrator::gear, 50)},
+      {"packing from rho 0.80, v_c = 1e-2", fast},
+      {"fresh lattice, relaxing", make_lattice(lattice)}};
   Workers one(1), two(2);
   for (const auto& [name, state] : states) {
     const double pairs = static_cast<double>(state.list.partner.size()) / static_cast<double>(state.n);
@@ -123,8 +124,9 @@ int main(int argc, char** argv) {
   }
 
   if (!cost_only) {
-    std::printf("Gear-4 vs velocity Verlet (restitution: 0.8-1.2 pair over 32 contact phases; energy: elastic\n"
-                "frictionless gas of 400 grains over 200 tau_c; cost: 2000 grains at rho 0.80, per step)\n");
+    std::printf(
+        "Gear-4 vs velocity Verlet (restitution: 0.8-1.2 pair over 32 contact phases; energy: elastic\n"
+        "frictionless gas of 400 grains over 200 tau_c; cost: 2000 grains at rho 0.80, per step)\n");
     std::printf("%-8s %-7s %14s %14s %14s %12s %16s\n", "method", "dt", "|mean e err|", "worst e err", "energy drift",
                 "us/step", "us per tau_c");
     for (double divisor : {25.0, 50.0, 100.0}) {
@@ -134,8 +136,8 @@ int main(int argc, char** argv) {
         const double us = microseconds_per_step(dense_packing(integrator, divisor), 5000);
         char dt[32];
         std::snprintf(dt, sizeof dt, "tau/%g", divisor);
-        std::printf("%-8s %-7s %14.3e %14.3e %14.3e %12.1f %16.0f\n", to_string(integrator), dt, e.mean, e.worst, drift, us,
-                    us * divisor);
+        std::printf("%-8s %-7s %14.3e %14.3e %14.3e %12.1f %16.0f\n", to_string(integrator), dt, e.mean, e.worst, drift,
+                    us, us * divisor);
       }
     }
   }

@@ -1,20 +1,21 @@
 // The CSV reader: what it accepts (any column order, extra columns, CRLF) and how it refuses
 // (every error names the file and, where a line is at fault, the line).
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
+#include "common/codec/frame_csv.hpp"
 
 #include <string>
 
-#include "common/codec/frame_csv.hpp"
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include "common/codec/run_csv.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet {
 namespace {
 
+using fnet::testing::TempDir;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using fnet::testing::TempDir;
 
 template <class Read>
 std::string csv_error(Read read) {
@@ -29,7 +30,9 @@ std::string csv_error(Read read) {
 // path:line, as the reader prefixes messages about one line.
 std::string at(const std::filesystem::path& file, int line) { return file.string() + ":" + std::to_string(line) + ":"; }
 
-bool same_contact(const Contact& a, const Contact& b) { return a.i == b.i && a.j == b.j && a.fn == b.fn && a.ft == b.ft; }
+bool same_contact(const Contact& a, const Contact& b) {
+  return a.i == b.i && a.j == b.j && a.fn == b.fn && a.ft == b.ft;
+}
 
 TEST(FrameCsv, ReadsContactsAndParticles) {
   TempDir dir;
@@ -81,7 +84,8 @@ TEST(FrameCsv, CrlfLineEndingsWork) {
 TEST(FrameCsv, MissingFileNamesTheFile) {
   TempDir dir;
   const auto missing = dir.path() / "no_such_contacts.csv";
-  EXPECT_THAT(csv_error([&] { read_contacts_csv(missing); }), AllOf(HasSubstr(missing.string()), HasSubstr("cannot open")));
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(missing); }),
+              AllOf(HasSubstr(missing.string()), HasSubstr("cannot open")));
   EXPECT_THAT(csv_error([&] { read_frame_csv(dir.write("c.csv", "i,j,fn,ft\n"), dir.path() / "no_p.csv"); }),
               HasSubstr((dir.path() / "no_p.csv").string()));
 }
@@ -103,7 +107,8 @@ TEST(FrameCsv, NonNumericFieldNamesFileLineColumnAndText) {
   EXPECT_THAT(csv_error([&] { read_contacts_csv(fractional_index); }),
               AllOf(HasSubstr(at(fractional_index, 2)), HasSubstr("'j'"), HasSubstr("'1.5'")));
   const auto empty_field = dir.write("p.csv", "id,x,y,r\n0,1,,0.5\n");
-  EXPECT_THAT(csv_error([&] { read_particles_csv(empty_field); }), AllOf(HasSubstr(at(empty_field, 2)), HasSubstr("'y'")));
+  EXPECT_THAT(csv_error([&] { read_particles_csv(empty_field); }),
+              AllOf(HasSubstr(at(empty_field, 2)), HasSubstr("'y'")));
   const auto trailing = dir.write("p2.csv", "id,x,y,r\n0,1,2,0.5x\n");
   EXPECT_THAT(csv_error([&] { read_particles_csv(trailing); }), AllOf(HasSubstr(at(trailing, 2)), HasSubstr("'r'")));
 }
@@ -128,7 +133,8 @@ TEST(FrameCsv, PlusFollowedByMinusIsNotANumber) {
 TEST(FrameCsv, WrongFieldCountNamesFileAndLine) {
   TempDir dir;
   const auto few = dir.write("c.csv", "i,j,fn,ft\n0,1,1,1\n1,2,3\n");
-  EXPECT_THAT(csv_error([&] { read_contacts_csv(few); }), AllOf(HasSubstr(at(few, 3)), HasSubstr("expected 4 fields, found 3")));
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(few); }),
+              AllOf(HasSubstr(at(few, 3)), HasSubstr("expected 4 fields, found 3")));
   const auto many = dir.write("p.csv", "id,x,y,r\n0,1,2,3,4\n");
   EXPECT_THAT(csv_error([&] { read_particles_csv(many); }), AllOf(HasSubstr(at(many, 2)), HasSubstr("found 5")));
 }

@@ -1,7 +1,5 @@
 #include "distance_support.hpp"
 
-#include "common/distance/diagonal_flow.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,14 +9,16 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "common/codec/diagram_json.hpp"
+#include "common/codec/frame_csv.hpp"
+#include "common/distance/diagonal_flow.hpp"
 #include "common/topology/force_network.hpp"
 #include "common/topology/frame.hpp"
-#include "common/codec/frame_csv.hpp"
 #include "common/topology/persistence.hpp"
 
 namespace fnet::test {
@@ -137,8 +137,7 @@ FrameDiagramsPair lammps_diagrams(int frame, bool tangential) {
   const auto particles = dir / name;
   Frame f = read_frame_csv(contacts, particles);
   validate(f);
-  const FrameDiagrams d =
-      compute_persistence(build_network(f, tangential ? ForceKind::tangential : ForceKind::normal));
+  const FrameDiagrams d = compute_persistence(build_network(f, tangential ? ForceKind::tangential : ForceKind::normal));
   return {d.pd0, d.pd1};
 }
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/topology/diagram.hpp"
 #include "common/distance/essential_convention.hpp"
+#include "common/topology/diagram.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::test {

@@ -10,9 +10,9 @@
 // test computes that bound itself from the solver's potentials, scanning every pair, and checks
 // it meets the cost of the solver's matching, recomputed from the matching itself. A suboptimal
 // matching leaves a gap, whatever the solver's own bookkeeping says.
-#include <gtest/gtest.h>
-
 #include <chrono>
+
+#include <gtest/gtest.h>
 
 #include "distance_support.hpp"
 #include "distance_test_util.hpp"

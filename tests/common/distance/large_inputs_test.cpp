@@ -4,9 +4,9 @@
 // solver runs at this size, so the exact checks are the solver's LP-dual certificate, recomputed
 // over all 2.5e9 pairs, and the triangle inequality through the empty diagram. Bounded time: each
 // distance must finish well inside the test's timeout (a hang or a quadratic blow-up fails it).
-#include <gtest/gtest.h>
-
 #include <chrono>
+
+#include <gtest/gtest.h>
 
 #include "distance_support.hpp"
 #include "distance_test_util.hpp"

@@ -1,12 +1,12 @@
 // Independent oracle on realistic pairs: scipy's assignment solver on the diagonal-augmented
 // cost matrix (exact), and the bottleneck by binary search with scipy's bipartite matching.
 // Also the command line, end to end.
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "common/codec/diagram_json.hpp"
@@ -25,8 +25,8 @@ void compare_with_oracle(const Diagram& a, const Diagram& b, EssentialConvention
       EXPECT_TRUE(r.infinite) << what;
       continue;
     }
-    EXPECT_TRUE(close(r.value, expected[k], 1e-12)) << what << " " << label(q[k], c) << ": fnet " << r.value
-                                                   << " oracle " << expected[k];
+    EXPECT_TRUE(close(r.value, expected[k], 1e-12))
+        << what << " " << label(q[k], c) << ": fnet " << r.value << " oracle " << expected[k];
   }
 }
 

@@ -1,9 +1,9 @@
 // The paper's toy example and the inputs that break the anchors (Hera, POT).
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 #include "common/codec/distance_json.hpp"
 #include "distance_support.hpp"

@@ -1,6 +1,6 @@
 // The HDF5 run file: round trip, reading with h5py, resuming, and surviving a killed writer.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
+#include "common/store/run_file.hpp"
+
 #include <unistd.h>
 
 #include <csignal>
@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sys/wait.h>
 
-#include "common/store/run_file.hpp"
+#include <gtest/gtest.h>
+
 #include "tests/support/run_frame_compare.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -31,7 +33,8 @@ RunFrame frame(const std::string& run, std::uint32_t index, std::size_t contacts
   f.frame.particle_count = 300;
   for (int k = 0; k < 300; ++k) f.frame.particles.push_back({u(rng), u(rng), 0.4 + 0.01 * (k % 20)});
   for (std::size_t k = 0; k < contacts; ++k)
-    f.frame.contacts.push_back({static_cast<std::int64_t>(k % 300), static_cast<std::int64_t>((k * 7 + 1) % 300), u(rng), std::fabs(u(rng))});
+    f.frame.contacts.push_back(
+        {static_cast<std::int64_t>(k % 300), static_cast<std::int64_t>((k * 7 + 1) % 300), u(rng), std::fabs(u(rng))});
   if (index % 2) f.wall_contacts.push_back({3, u(rng), 0.25});
   return f;
 }

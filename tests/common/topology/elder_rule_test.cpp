@@ -1,9 +1,9 @@
 // The paper's Fig. 2: PD0 = {(128, -1), (119, 74), (113, 83), (106, 76)}. Four components are born
 // at 128, 119, 113 and 106; at 83 the 113-component meets the 119-component and dies (the elder
 // survives); at 76 the 106-component dies; at 74 the 119-component meets the 128-component and dies.
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "tests/reference/reference_persistence.hpp"
 #include "tests/support/diagram_checks.hpp"
@@ -17,13 +17,20 @@ namespace {
 // pendant contacts of force 1, 1, 1, 2 on the 128-particle add only zero-length points and bring
 // the mean force to exactly 64 = (699 + 5) / 11, so normalized values are the raw ones / 64 exactly.
 Frame figure2_frame() {
-  return frame_of(12, {
-                          both(0, 1, 128), both(2, 3, 119), both(4, 5, 113), both(6, 7, 106),  // the four peaks
-                          both(5, 3, 83),   // 113-component meets the 119-component
-                          both(7, 2, 76),   // 106-component meets the 119-component
-                          both(2, 0, 74),   // 119-component meets the 128-component
-                          both(0, 8, 1), both(0, 9, 1), both(0, 10, 1), both(0, 11, 2),
-                      },
+  return frame_of(12,
+                  {
+                      both(0, 1, 128),
+                      both(2, 3, 119),
+                      both(4, 5, 113),
+                      both(6, 7, 106),  // the four peaks
+                      both(5, 3, 83),   // 113-component meets the 119-component
+                      both(7, 2, 76),   // 106-component meets the 119-component
+                      both(2, 0, 74),   // 119-component meets the 128-component
+                      both(0, 8, 1),
+                      both(0, 9, 1),
+                      both(0, 10, 1),
+                      both(0, 11, 2),
+                  },
                   "figure 2");
 }
 
@@ -59,16 +66,18 @@ TEST(ElderRule, SurvivorDoesNotDependOnLabelsOrientationOrRowOrder) {
 // Each peak is born, the merges happen in the paper's order, and the ratios survive any scale:
 // births and deaths relative to the 128-peak are the figure's numbers whatever the mean.
 TEST(ElderRule, Figure2RatiosWithoutThePendants) {
-  const Frame frame = frame_of(8, {both(0, 1, 128), both(2, 3, 119), both(4, 5, 113), both(6, 7, 106),
-                                   both(5, 3, 83), both(7, 2, 76), both(2, 0, 74)});
+  const Frame frame = frame_of(8, {both(0, 1, 128), both(2, 3, 119), both(4, 5, 113), both(6, 7, 106), both(5, 3, 83),
+                                   both(7, 2, 76), both(2, 0, 74)});
   const Diagram pd0 = fast_path(frame, ForceKind::normal).pd0;
   ASSERT_EQ(pd0.size(), 4u);
   const double unit = pd0[0].birth / 128;  // 1 / mean
   const double expected[4][2] = {{128, -1}, {119, 74}, {113, 83}, {106, 76}};
   for (std::size_t k = 0; k < 4; ++k) {
     EXPECT_NEAR(pd0[k].birth / unit, expected[k][0], 1e-12);
-    if (expected[k][1] == -1) EXPECT_EQ(pd0[k].death, kNeverDies);
-    else EXPECT_NEAR(pd0[k].death / unit, expected[k][1], 1e-12);
+    if (expected[k][1] == -1)
+      EXPECT_EQ(pd0[k].death, kNeverDies);
+    else
+      EXPECT_NEAR(pd0[k].death / unit, expected[k][1], 1e-12);
   }
 }
 

@@ -1,11 +1,12 @@
 // build_network: which contacts are edges, the mean they are normalized by, and the order it promises.
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
+#include "common/topology/force_network.hpp"
 
 #include <random>
 #include <stdexcept>
 
-#include "common/topology/force_network.hpp"
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include "tests/support/contact_graphs.hpp"
 #include "tests/support/frame_transforms.hpp"
 #include "tests/support/random_forces.hpp"
@@ -53,7 +54,8 @@ TEST(ForceNetwork, TieOrderDoesNotDependOnRowOrder) {
   const auto same_edges = [](const ForceNetwork& a, const ForceNetwork& b) {
     if (a.edges.size() != b.edges.size()) return false;
     for (std::size_t k = 0; k < a.edges.size(); ++k)
-      if (a.edges[k].u != b.edges[k].u || a.edges[k].v != b.edges[k].v || a.edges[k].value != b.edges[k].value) return false;
+      if (a.edges[k].u != b.edges[k].u || a.edges[k].v != b.edges[k].v || a.edges[k].value != b.edges[k].value)
+        return false;
     return true;
   };
   // The smallest case: two contacts with equal force, listed in both orders.
@@ -64,7 +66,8 @@ TEST(ForceNetwork, TieOrderDoesNotDependOnRowOrder) {
   // And on frames large enough for the radix sort (>= 256 edges).
   std::mt19937_64 rng(401);
   const Frame big = frame_from_graph(triangular_lattice(12, 12, 1.0, rng), ForceStyle{3, 0, 0, 0}, 0, rng);
-  EXPECT_TRUE(same_edges(build_network(big, ForceKind::normal), build_network(shuffled_rows(big, rng), ForceKind::normal)));
+  EXPECT_TRUE(
+      same_edges(build_network(big, ForceKind::normal), build_network(shuffled_rows(big, rng), ForceKind::normal)));
 }
 
 TEST(ForceKindNames, ParseAndPrint) {

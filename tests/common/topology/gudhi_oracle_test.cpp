@@ -1,11 +1,11 @@
 // fnet's PD0 and PD1 against GUDHI's persistent cohomology of the same flag complex.
 // The normalization is recomputed here from the raw frame, so build_network is checked too.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "common/topology/force_network.hpp"
 #include "common/topology/persistence.hpp"
@@ -143,7 +143,8 @@ INSTANTIATE_TEST_SUITE_P(Frames, LammpsOracle,
                          ::testing::Combine(::testing::Range<std::size_t>(0, 11),
                                             ::testing::Values(ForceKind::normal, ForceKind::tangential)),
                          [](const auto& test) {
-                           return "frame" + std::to_string(std::get<0>(test.param)) + "_" + kind_name(std::get<1>(test.param));
+                           return "frame" + std::to_string(std::get<0>(test.param)) + "_" +
+                                  kind_name(std::get<1>(test.param));
                          });
 
 }  // namespace

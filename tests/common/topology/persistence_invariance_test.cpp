@@ -1,10 +1,10 @@
 // Diagrams describe the packing, not how its file was written: row order, pair orientation and
 // particle labels must not change them at all; a common force scale must not change them beyond
 // rounding (normalization divides it out).
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "tests/support/contact_graphs.hpp"
 #include "tests/support/diagram_checks.hpp"
@@ -19,14 +19,26 @@ constexpr ForceKind kKinds[] = {ForceKind::normal, ForceKind::tangential};
 // A frame from one of the graph families, with a random force style (ties, zeros, negatives and,
 // if allowed, near-ties a few ulps apart).
 Frame random_frame(std::mt19937_64& rng, bool near_ties = true) {
-  const auto pick = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng); };
+  const auto pick = [&](std::size_t lo, std::size_t hi) {
+    return std::uniform_int_distribution<std::size_t>(lo, hi)(rng);
+  };
   Graph g;
   switch (pick(0, 4)) {
-    case 0: g = triangular_lattice(pick(2, 6), pick(2, 6), 0.8, rng); break;
-    case 1: g = square_lattice(pick(2, 6), pick(2, 6), 0.9, 0.3, rng); break;
-    case 2: g = apollonian(pick(1, 25), rng); break;
-    case 3: g = random_dense(pick(4, 10), 0.6, rng); break;
-    default: g = bipartite_k33_with_chords(pick(0, 6), rng); break;
+    case 0:
+      g = triangular_lattice(pick(2, 6), pick(2, 6), 0.8, rng);
+      break;
+    case 1:
+      g = square_lattice(pick(2, 6), pick(2, 6), 0.9, 0.3, rng);
+      break;
+    case 2:
+      g = apollonian(pick(1, 25), rng);
+      break;
+    case 3:
+      g = random_dense(pick(4, 10), 0.6, rng);
+      break;
+    default:
+      g = bipartite_k33_with_chords(pick(0, 6), rng);
+      break;
   }
   ForceStyle style = random_style(rng);
   if (!near_ties) style.ulp_jitter = 0;
@@ -42,8 +54,12 @@ void expect_identical_after(std::uint64_t seed, Change change) {
     const Frame changed = change(frame, rng);
     for (ForceKind kind : kKinds) {
       const FrameDiagrams a = fast_path(frame, kind), b = fast_path(changed, kind);
-      ASSERT_EQ(a.pd0, b.pd0) << to_string(kind) << ", case " << k << "\n" << describe(frame) << "changed:\n" << describe(changed);
-      ASSERT_EQ(a.pd1, b.pd1) << to_string(kind) << ", case " << k << "\n" << describe(frame) << "changed:\n" << describe(changed);
+      ASSERT_EQ(a.pd0, b.pd0) << to_string(kind) << ", case " << k << "\n"
+                              << describe(frame) << "changed:\n"
+                              << describe(changed);
+      ASSERT_EQ(a.pd1, b.pd1) << to_string(kind) << ", case " << k << "\n"
+                              << describe(frame) << "changed:\n"
+                              << describe(changed);
       ASSERT_EQ(a.triangles, b.triangles);
     }
   }
@@ -62,9 +78,8 @@ TEST(PersistenceInvariance, PermutingParticleLabelsGivesIdenticalDiagrams) {
 }
 
 TEST(PersistenceInvariance, AllThreeTogetherGiveIdenticalDiagrams) {
-  expect_identical_after(204, [](const Frame& f, std::mt19937_64& rng) {
-    return shuffled_rows(reversed_pairs(relabelled(f, rng)), rng);
-  });
+  expect_identical_after(
+      204, [](const Frame& f, std::mt19937_64& rng) { return shuffled_rows(reversed_pairs(relabelled(f, rng)), rng); });
 }
 
 // Multiplying by a power of two is exact in binary floating point, so the normalized values, and
@@ -97,8 +112,10 @@ TEST(PersistenceInvariance, ScalingAllForcesChangesNothingBeyondRounding) {
       const Frame frame = random_frame(rng, false);
       for (ForceKind kind : kKinds) {
         const FrameDiagrams a = fast_path(frame, kind), b = fast_path(scaled(frame, factor), kind);
-        ASSERT_TRUE(nearly_equal(a.pd0, b.pd0, 1e-12)) << "factor " << factor << ", " << to_string(kind) << "\n" << describe(frame);
-        ASSERT_TRUE(nearly_equal(a.pd1, b.pd1, 1e-12)) << "factor " << factor << ", " << to_string(kind) << "\n" << describe(frame);
+        ASSERT_TRUE(nearly_equal(a.pd0, b.pd0, 1e-12)) << "factor " << factor << ", " << to_string(kind) << "\n"
+                                                       << describe(frame);
+        ASSERT_TRUE(nearly_equal(a.pd1, b.pd1, 1e-12)) << "factor " << factor << ", " << to_string(kind) << "\n"
+                                                       << describe(frame);
       }
     }
   }

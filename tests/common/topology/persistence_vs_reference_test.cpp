@@ -1,8 +1,6 @@
 // The fast path (build_network + compute_persistence) against the brute-force reference on
 // thousands of random frames: the mean force to 1e-15, then diagrams bit for bit and simplex counts
 // (see matches_reference).
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +8,8 @@
 #include <numbers>
 #include <random>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "common/codec/frame_csv.hpp"
 #include "tests/reference/reference_persistence.hpp"
@@ -80,9 +80,8 @@ TEST(PersistenceVsReference, NonPlanarDenseGraphs) {
 }
 
 TEST(PersistenceVsReference, CompleteGraphsK4K5K6) {
-  compare_many(106, 3000, [](auto& rng) {
-    return frame_from_graph(complete(uniform(4, 6, rng)), random_style(rng), 0, rng);
-  });
+  compare_many(106, 3000,
+               [](auto& rng) { return frame_from_graph(complete(uniform(4, 6, rng)), random_style(rng), 0, rng); });
 }
 
 TEST(PersistenceVsReference, K33PlusTriangles) {
@@ -93,9 +92,8 @@ TEST(PersistenceVsReference, K33PlusTriangles) {
 
 TEST(PersistenceVsReference, PlanarAndNonPlanarPiecesSideBySide) {
   compare_many(108, 2000, [](auto& rng) {
-    const Graph g = disjoint_union(complete(uniform(4, 5, rng)),
-                                   disjoint_union(apollonian(uniform(0, 8, rng), rng),
-                                                  triangular_lattice(3, 3, 0.8, rng)));
+    const Graph g = disjoint_union(complete(uniform(4, 5, rng)), disjoint_union(apollonian(uniform(0, 8, rng), rng),
+                                                                                triangular_lattice(3, 3, 0.8, rng)));
     return frame_from_graph(g, random_style(rng), few_rattlers(rng), rng);
   });
 }
@@ -138,7 +136,8 @@ TEST(PersistenceVsReference, HighDegreeHubs) {
 }
 
 TEST(PersistenceVsReference, LargeCompleteGraphs) {
-  compare_many(118, 40, [](auto& rng) { return frame_from_graph(complete(uniform(10, 24, rng)), random_style(rng), 0, rng); });
+  compare_many(118, 40,
+               [](auto& rng) { return frame_from_graph(complete(uniform(10, 24, rng)), random_style(rng), 0, rng); });
 }
 
 // Forces over 600 decades: normalized values reach subnormals and underflow to 0, where the
@@ -157,8 +156,8 @@ TEST(PersistenceVsReference, ExtremeRangeOfForces) {
 
 TEST(PersistenceVsReference, SingleDistinctValue) {
   compare_many(110, 1500, [](auto& rng) {
-    const Graph g = uniform(0, 1, rng) == 0 ? random_dense(uniform(3, 10, rng), 0.7, rng)
-                                            : apollonian(uniform(0, 15, rng), rng);
+    const Graph g =
+        uniform(0, 1, rng) == 0 ? random_dense(uniform(3, 10, rng), 0.7, rng) : apollonian(uniform(0, 15, rng), rng);
     return frame_from_graph(g, ForceStyle{1, 0, 0, 0}, few_rattlers(rng), rng);
   });
 }
@@ -182,11 +181,13 @@ TEST(PersistenceVsReference, ZeroForcesAreNotEdges) {
 TEST(PersistenceVsReference, NegativeNormalForceUsesItsMagnitude) {
   std::mt19937_64 rng(112);
   for (int k = 0; k < 800; ++k) {
-    const Frame frame = frame_from_graph(random_dense(uniform(4, 9, rng), 0.6, rng), ForceStyle{0, 0.1, 0.5, 0}, 0, rng);
+    const Frame frame =
+        frame_from_graph(random_dense(uniform(4, 9, rng), 0.6, rng), ForceStyle{0, 0.1, 0.5, 0}, 0, rng);
     ASSERT_TRUE(matches_reference(frame, ForceKind::normal)) << "case " << k;
     Frame magnitudes = frame;
     for (Contact& c : magnitudes.contacts) c.fn = std::fabs(c.fn);
-    const FrameDiagrams signed_fn = fast_path(frame, ForceKind::normal), abs_fn = fast_path(magnitudes, ForceKind::normal);
+    const FrameDiagrams signed_fn = fast_path(frame, ForceKind::normal),
+                        abs_fn = fast_path(magnitudes, ForceKind::normal);
     ASSERT_EQ(signed_fn.pd0, abs_fn.pd0) << describe(frame);
     ASSERT_EQ(signed_fn.pd1, abs_fn.pd1) << describe(frame);
   }
@@ -224,7 +225,8 @@ TEST(PersistenceVsReference, IsolatedParticlesAreRattlers) {
       const Diagram pd0 = fast_path(frame, kind).pd0;
       ASSERT_GE(pd0.size(), rattlers);
       // Canonical order puts the rattlers' (0, -1) last.
-      for (std::size_t r = 0; r < rattlers; ++r) EXPECT_EQ(pd0[pd0.size() - 1 - r], (PersistencePoint{0.0, kNeverDies}));
+      for (std::size_t r = 0; r < rattlers; ++r)
+        EXPECT_EQ(pd0[pd0.size() - 1 - r], (PersistencePoint{0.0, kNeverDies}));
     }
   }
 }
@@ -235,7 +237,8 @@ TEST(PersistenceVsReference, LammpsFrames) {
   for (int k = 0; k <= 10; ++k) {
     char stem[32];
     std::snprintf(stem, sizeof stem, "frame_%04d_", k);
-    const Frame frame = read_frame_csv(dir / (std::string(stem) + "contacts.csv"), dir / (std::string(stem) + "particles.csv"));
+    const Frame frame =
+        read_frame_csv(dir / (std::string(stem) + "contacts.csv"), dir / (std::string(stem) + "particles.csv"));
     for (ForceKind kind : kKinds) EXPECT_TRUE(matches_reference(frame, kind)) << frame.label;
   }
 }

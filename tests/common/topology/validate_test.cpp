@@ -1,10 +1,10 @@
 // Every rejection of fnet::validate, with its message: it must name the frame and the offending entry.
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
 #include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 
 #include "common/topology/frame.hpp"
 
@@ -58,7 +58,8 @@ TEST(Validate, RejectsNonFiniteNormalForce) {
   for (double bad : {kNaN, kInf, -kInf}) {
     Frame f = valid_frame();
     f.contacts[2].fn = bad;
-    EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 2 (i=2, j=3"), HasSubstr("non-finite")));
+    EXPECT_THAT(rejection(f),
+                AllOf(StartsWith("frame 12: "), HasSubstr("contact 2 (i=2, j=3"), HasSubstr("non-finite")));
   }
 }
 
@@ -66,7 +67,8 @@ TEST(Validate, RejectsNonFiniteTangentialForce) {
   for (double bad : {kNaN, kInf, -kInf}) {
     Frame f = valid_frame();
     f.contacts[1].ft = bad;
-    EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=1, j=3"), HasSubstr("non-finite")));
+    EXPECT_THAT(rejection(f),
+                AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=1, j=3"), HasSubstr("non-finite")));
   }
 }
 
@@ -99,16 +101,19 @@ TEST(Validate, RejectsNegativeRadius) {
 TEST(Validate, RejectsNegativeIndex) {
   Frame fi = valid_frame();
   fi.contacts[1].i = -1;
-  EXPECT_THAT(rejection(fi), AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=-1, j=3"), HasSubstr("out of range")));
+  EXPECT_THAT(rejection(fi),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=-1, j=3"), HasSubstr("out of range")));
   Frame fj = valid_frame();
   fj.contacts[0].j = -7;
-  EXPECT_THAT(rejection(fj), AllOf(StartsWith("frame 12: "), HasSubstr("contact 0 (i=0, j=-7"), HasSubstr("out of range")));
+  EXPECT_THAT(rejection(fj),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 0 (i=0, j=-7"), HasSubstr("out of range")));
 }
 
 TEST(Validate, RejectsIndexAtOrAboveParticleCount) {
   Frame f = valid_frame();
   f.contacts[3].j = 4;
-  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 3 (i=0, j=4"), HasSubstr("out of range [0, 4)")));
+  EXPECT_THAT(rejection(f),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 3 (i=0, j=4"), HasSubstr("out of range [0, 4)")));
   Frame g = valid_frame();
   g.contacts[2].i = 1000;
   EXPECT_THAT(rejection(g), AllOf(StartsWith("frame 12: "), HasSubstr("contact 2 (i=1000"), HasSubstr("out of range")));
@@ -127,21 +132,22 @@ TEST(Validate, HugeIndexWithoutParticleTableNamesTheContact) {
 TEST(Validate, RejectsSelfContact) {
   Frame f = valid_frame();
   f.contacts[1].j = 1;
-  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=1, j=1"), HasSubstr("self-contact")));
+  EXPECT_THAT(rejection(f),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 1 (i=1, j=1"), HasSubstr("self-contact")));
 }
 
 TEST(Validate, RejectsDuplicatePairInTheSameOrder) {
   Frame f = valid_frame();
   f.contacts.push_back({1, 3, 5.0, 0.5});
-  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 4 (i=1, j=3"),
-                                  HasSubstr("duplicate of contact 1")));
+  EXPECT_THAT(rejection(f),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 4 (i=1, j=3"), HasSubstr("duplicate of contact 1")));
 }
 
 TEST(Validate, RejectsDuplicatePairInReversedOrder) {
   Frame f = valid_frame();
   f.contacts.insert(f.contacts.begin(), {3, 2, 5.0, 0.5});  // row 0; the same pair is now row 3 as (2, 3)
-  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 3 (i=2, j=3"),
-                                  HasSubstr("duplicate of contact 0")));
+  EXPECT_THAT(rejection(f),
+              AllOf(StartsWith("frame 12: "), HasSubstr("contact 3 (i=2, j=3"), HasSubstr("duplicate of contact 0")));
 }
 
 TEST(Validate, RejectsParticleTableOfTheWrongSize) {

@@ -1,8 +1,8 @@
 // The fast path keeps buffers per thread between calls, and drops them after a large frame: no
 // state may leak from one frame into the next.
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "tests/support/contact_graphs.hpp"
 #include "tests/support/diagram_checks.hpp"
@@ -46,7 +46,8 @@ TEST(WorkspaceReuse, AHugeFrameThenSmallOnes) {
   Frame huge = frame_from_graph(apollonian(150, rng), ForceStyle{3, 0, 0, 0}, 300000, rng);
   huge = relabelled(huge, rng);  // spread the contacts over the whole index range
   ASSERT_TRUE(matches_reference(huge, ForceKind::normal));
-  for (int k = 0; k < 50; ++k) ASSERT_TRUE(matches_reference(small_frame(rng), ForceKind::normal)) << "after the huge frame";
+  for (int k = 0; k < 50; ++k)
+    ASSERT_TRUE(matches_reference(small_frame(rng), ForceKind::normal)) << "after the huge frame";
 }
 
 }  // namespace

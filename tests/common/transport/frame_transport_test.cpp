@@ -1,15 +1,17 @@
 // Frames over real DDS on loopback: a publisher in a child process, the subscriber here.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
+#include "common/transport/frame_transport.hpp"
+
 #include <unistd.h>
 
 #include <chrono>
 #include <csignal>
 #include <map>
 #include <random>
+#include <sys/wait.h>
 #include <thread>
 
-#include "common/transport/frame_transport.hpp"
+#include <gtest/gtest.h>
+
 #include "fnet.h"
 #include "tests/support/run_frame_compare.hpp"
 
@@ -36,9 +38,9 @@ RunInfo make_info(const std::string& run) {
 
 using testing::expect_bit_exact;
 
-// Runs `publish` in a child process (forked before this process creates any DDS entity); the parent's pipe end reads one byte when it has finished
-// writing. The child then waits for `release` (a byte from the parent) so that late joiners can
-// still be served from its durability history.
+// Runs `publish` in a child process (forked before this process creates any DDS entity); the parent's pipe end reads
+// one byte when it has finished writing. The child then waits for `release` (a byte from the parent) so that late
+// joiners can still be served from its durability history.
 struct Publisher {
   pid_t pid = -1;
   int done_fd = -1, release_fd = -1;
@@ -113,7 +115,8 @@ TEST(FrameTransport, SubscriberReceivesEveryFrameBitExactInOrder) {
   constexpr std::uint32_t kFrames = 40;
   Publisher pub([&](dds::FramePublisher& p) {
     // Wait for the subscriber to match, so this test checks live delivery (late joining is below).
-    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
     p.publish(make_info("live"));
     for (std::uint32_t k = 0; k < kFrames; ++k) p.publish(make_frame("live", k, 2000, 4000));
   });
@@ -153,7 +156,8 @@ TEST(FrameTransport, LateSubscriberGetsEveryFrameOfEveryRun) {
 TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {
   use_domain(13);
   Publisher pub([&](dds::FramePublisher& p) {
-    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
     // A raw sample whose arrays disagree, written by a second writer on the same topic.
     dds::Entity participant(dds::check(dds_create_participant(Publisher::domain(), nullptr, nullptr), "participant"));
     const dds_entity_t topic = dds::check(

@@ -1,19 +1,19 @@
 // fnet-analyze diagram as users run it: JSON on stdout equal to the library's answer; errors as a
 // non-zero exit, a message on stderr that names the problem, and nothing on stdout.
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
 #include "common/codec/diagram_json.hpp"
-#include "common/topology/force_network.hpp"
 #include "common/codec/frame_csv.hpp"
+#include "common/topology/force_network.hpp"
 #include "common/topology/persistence.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -28,9 +28,7 @@ const std::filesystem::path kFrames = std::filesystem::path(FNET_TEST_DATA) / "l
 
 class DiagramCli : public ::testing::Test {
  protected:
-  ProcessResult analyze(std::vector<std::string> args) {
-    return run_process(FNET_ANALYZE, args, scratch_.path());
-  }
+  ProcessResult analyze(std::vector<std::string> args) { return run_process(FNET_ANALYZE, args, scratch_.path()); }
   std::filesystem::path write(const std::string& name, const std::string& text) { return scratch_.write(name, text); }
 
   // Checks a failed run: non-zero exit, nothing on stdout, and returns stderr.
@@ -129,12 +127,11 @@ TEST_F(DiagramCli, MissingContactsFileIsNamed) {
 TEST_F(DiagramCli, MissingParticlesFileIsNamed) {
   const auto contacts = write("c.csv", "i,j,fn,ft\n0,1,1,1\n");
   const std::string missing = (contacts.parent_path() / "absent_particles.csv").string();
-  EXPECT_THAT(failure_message({"diagram", "--contacts", contacts.string(), "--particles", missing}), HasSubstr(missing));
+  EXPECT_THAT(failure_message({"diagram", "--contacts", contacts.string(), "--particles", missing}),
+              HasSubstr(missing));
 }
 
-TEST_F(DiagramCli, MissingContactsOptionIsAnError) {
-  EXPECT_THAT(failure_message({"diagram"}), HasSubstr("contacts"));
-}
+TEST_F(DiagramCli, MissingContactsOptionIsAnError) { EXPECT_THAT(failure_message({"diagram"}), HasSubstr("contacts")); }
 
 TEST_F(DiagramCli, BadForceNameIsNamed) {
   const auto contacts = write("c.csv", "i,j,fn,ft\n0,1,1,1\n");

@@ -9,13 +9,13 @@
 // over phases (what a packing samples) it is within 1 % of the analytic value at Δt = τ_c/50,
 // and every phase stays within γ_n Δt. Durations, interpolated between steps, are within 1 %
 // for every phase. Each test sweeps the phase of the contact's start over a step.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "server/sim/simulation.hpp"
 

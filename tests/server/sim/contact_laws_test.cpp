@@ -1,8 +1,8 @@
 // Properties that must hold at every contact of every step, and the conservation laws.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "server/sim/protocol.hpp"
 #include "server/sim/simulation.hpp"
@@ -51,8 +51,8 @@ TEST(ContactLaws, CoulombAndNewtonAtEveryContactOfEveryStep) {
     }
     if (scale > 0) worst_newton = std::max(worst_newton, (std::abs(sx) + std::abs(sy)) / scale);
   }
-  std::printf("%zu contact-steps checked, %zu at the Coulomb cap; worst |sum F| / sum |F| = %.3g\n", checked,
-              sliding, worst_newton);
+  std::printf("%zu contact-steps checked, %zu at the Coulomb cap; worst |sum F| / sum |F| = %.3g\n", checked, sliding,
+              worst_newton);
   EXPECT_GT(checked, 100000u);
   EXPECT_GT(sliding, 1000u);  // the cap was exercised
   EXPECT_LT(worst_newton, 1e-12);
@@ -100,7 +100,8 @@ TEST(ContactLaws, MomentumConservedAndSpringTangent) {
   }
   const auto [px1, py1] = momentum();
   std::printf("momentum drift (%.3g, %.3g) of |p| scale %.3g; %zu contacts; worst |n.xi|/|xi| %.3g\n", px1 - px0,
-              py1 - py0, std::hypot(px0, py0) + static_cast<double>(s.n) * p.initial_speed / s.c.tau_c, contacts, worst_tangent);
+              py1 - py0, std::hypot(px0, py0) + static_cast<double>(s.n) * p.initial_speed / s.c.tau_c, contacts,
+              worst_tangent);
   EXPECT_GT(contacts, 1000u);
   EXPECT_NEAR(px1, px0, 1e-9);
   EXPECT_NEAR(py1, py0, 1e-9);
@@ -137,10 +138,11 @@ TEST(ContactLaws, RelaxedJammedPackingIsInForceBalance) {
     worst_force = std::max(worst_force, std::hypot(s.fx[i], s.fy[i]));
     worst_torque = std::max(worst_torque, std::abs(s.torque[i]) / s.radius[i]);
   }
-  std::printf("relaxed packing Z = %.3f, mean |F_n| = %.4g: worst |sum F| / mean = %.3g, worst |torque|/r / mean = "
-              "%.3g, KE/grain %.3g\n",
-              coordination(s), mean_fn, worst_force / mean_fn, worst_torque / mean_fn,
-              kinetic_energy(s) / static_cast<double>(s.n));
+  std::printf(
+      "relaxed packing Z = %.3f, mean |F_n| = %.4g: worst |sum F| / mean = %.3g, worst |torque|/r / mean = "
+      "%.3g, KE/grain %.3g\n",
+      coordination(s), mean_fn, worst_force / mean_fn, worst_torque / mean_fn,
+      kinetic_energy(s) / static_cast<double>(s.n));
   EXPECT_LT(worst_force / mean_fn, 1e-4);
   EXPECT_LT(worst_torque / mean_fn, 1e-4);
 }

@@ -1,6 +1,6 @@
 // The protocol: frames at fixed intervals from the relaxed packing to rho_final, determinism for
 // a seed, checkpoint/resume bit for bit, CSV export readable by the analysis.
-#include <gtest/gtest.h>
+#include "server/sim/protocol.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "common/topology/frame.hpp"
-#include "common/codec/frame_csv.hpp"
-#include "server/sim/checkpoint.hpp"
-#include "server/sim/csv_export.hpp"
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "server/sim/protocol.hpp"
+#include "common/codec/frame_csv.hpp"
+#include "common/topology/frame.hpp"
+#include "server/sim/checkpoint.hpp"
+#include "server/sim/csv_export.hpp"
 #include "server/sim/workers.hpp"
 #include "tests/support/run_frame_compare.hpp"
 
@@ -193,8 +193,8 @@ TEST(Protocol, CsvExportIsWhatTheAnalysisReads) {
   for (const FrameSnapshot& f : frames) {
     char name[64];
     std::snprintf(name, sizeof name, "frame_%04zu_", f.index);
-    const fnet::Frame read = fnet::read_frame_csv(dir / (std::string(name) + "contacts.csv"),
-                                                  dir / (std::string(name) + "particles.csv"));
+    const fnet::Frame read =
+        fnet::read_frame_csv(dir / (std::string(name) + "contacts.csv"), dir / (std::string(name) + "particles.csv"));
     EXPECT_NO_THROW(fnet::validate(read));
     ASSERT_EQ(read.particle_count, p.particles);
     ASSERT_EQ(read.contacts.size(), f.frame.contacts.size());

@@ -1,13 +1,13 @@
 // The thread team of the time steps: every part runs exactly once per call, on distinct threads,
 // also after the team has gone to sleep, and a team of one runs everything on the caller.
-#include <gtest/gtest.h>
+#include "server/sim/workers.hpp"
 
 #include <chrono>
 #include <set>
 #include <thread>
 #include <vector>
 
-#include "server/sim/workers.hpp"
+#include <gtest/gtest.h>
 
 namespace fnet::sim {
 namespace {
@@ -17,7 +17,8 @@ TEST(Workers, EveryPartOncePerCall) {
     Workers team(threads);
     std::vector<long> calls(threads, 0);
     for (int k = 0; k < 20000; ++k) team.run([&](unsigned part) { ++calls[part]; });
-    for (unsigned part = 0; part < threads; ++part) EXPECT_EQ(calls[part], 20000) << threads << " threads, part " << part;
+    for (unsigned part = 0; part < threads; ++part)
+      EXPECT_EQ(calls[part], 20000) << threads << " threads, part " << part;
   }
 }
 
