@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libhdf5-dev libboost-dev libboost-program-options-dev
   nlohmann-json3-dev cyclonedds-dev cyclonedds-tools
   # tests
-  libgtest-dev libgmock-dev googletest
+  libgtest-dev libgmock-dev googletest clang-format
   # independent oracles used by tests and benchmarks
   libgudhi-dev python3 python3-gudhi python3-numpy python3-scipy python3-pot python3-h5py
   lammps
