@@ -11,26 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/analyzed_frame.hpp"
 #include "common/analysis/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
 
 namespace fnet {
 
 inline constexpr const char* kStoreSchema = "fnet-store-1";
-
-struct AnalyzedFrame {
-  FrameHeader header;
-  FrameDiagramSet diagrams;
-  std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
-  StepDistances distances;                // meaningful only with a previous frame
-};
-
-struct RejectedFrame {
-  std::uint32_t index = 0;
-  std::string reason;
-  bool operator==(const RejectedFrame&) const = default;
-};
 
 struct StoredRun {
   RunInfo info;
