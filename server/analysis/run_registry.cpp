@@ -21,6 +21,7 @@ std::vector<std::string> Registry::load() {
       StoredRun stored = read_store(entry.path());
       Run& run = run_locked(stored.info.run_id);
       run.has_info = stored.has_info;
+      run.last_activity = stored.last_activity();
       if (stored.has_info) run.info = stored.info;
       std::vector<std::uint32_t> settled;
       for (AnalyzedFrame& f : stored.frames) {
@@ -76,6 +77,7 @@ void Registry::on_info(const RunInfo& info) {
   if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
   run.has_info = true;
   run.info = info;
+  run.last_activity = store_time_now();
   if (run.store) try {
       run.store->write_info(info);
     } catch (const std::exception& e) {
@@ -98,7 +100,7 @@ void Registry::on_frame(RunFrame frame) {
     return;
   }
   Run& run = run_locked(frame.header.run_id);
-  run.last_frame_at = Clock::now();
+  run.last_activity = store_time_now();
   RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
   switch (admission.arrival) {
     case RunPipeline::Arrival::duplicate:
@@ -213,7 +215,8 @@ RunSummary Registry::summary_locked(const std::string& id, const Run& run) const
     s.last_rho = run.committed.rbegin()->second->header.rho;
     s.last_z = run.committed.rbegin()->second->header.z;
   }
-  s.seconds_since_last_frame = std::chrono::duration<double>(Clock::now() - run.last_frame_at).count();
+  s.last_activity = run.last_activity;
+  s.seconds_since_last_frame = store_time_now() - run.last_activity.value_or(run.known_since);
   return s;
 }
 
@@ -262,9 +265,10 @@ std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, 
 
 std::string Registry::newest_run() const {
   std::lock_guard lock(mutex_);
+  // A run whose activity is unknown (a store from before the times were kept) is the oldest.
   const Run* newest = nullptr;
   for (const auto& [id, run] : runs_)
-    if (!newest || run.last_frame_at > newest->last_frame_at) newest = &run;
+    if (!newest || run.last_activity > newest->last_activity) newest = &run;
   return newest ? newest->run_id : std::string();
 }
 

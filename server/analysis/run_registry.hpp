@@ -46,7 +46,10 @@ struct RunSummary {
   std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
   std::optional<std::uint32_t> first_frame, last_frame;
   double last_rho = 0, last_z = 0;
-  double seconds_since_last_frame = 0;
+  // Seconds since the Unix epoch of the last frame received or announcement, kept in the store
+  // so that it survives a restart; none for a run known only from a store without times.
+  std::optional<StoreTime> last_activity;
+  double seconds_since_last_frame = 0;  // since last_activity, or since the server learned of the run
 };
 
 struct Counters {
@@ -103,7 +106,8 @@ class Registry {
     RunPipeline pipeline;  // the order and acceptance of its frames
     std::map<std::uint32_t, std::shared_ptr<const AnalyzedFrame>> committed;
     std::vector<RejectedFrame> rejected;
-    Clock::time_point last_frame_at = Clock::now();
+    std::optional<StoreTime> last_activity;
+    StoreTime known_since = store_time_now();
     std::unique_ptr<StoreWriter> store;
   };
   struct Subscription {
