@@ -1,7 +1,10 @@
 #include "common/store/analysis_store.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
+#include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include "common/codec/run_info_json.hpp"
@@ -51,7 +54,32 @@ h5::PropertyList latest_format() {
   return fapl;
 }
 
+// The first `rows` times of a time column, NaN where the column stops short or was never written
+// (stores from before the times were kept).
+std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t rows, const std::string& where) {
+  std::vector<StoreTime> out(rows, NAN);
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return out;
+  const std::vector<double> stored = h5::read_doubles(file, name, 0, where);
+  std::copy_n(stored.begin(), std::min(rows, stored.size()), out.begin());
+  return out;
+}
+
 }  // namespace
+
+StoreTime store_time_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::optional<StoreTime> StoredRun::last_activity() const {
+  std::optional<StoreTime> latest;
+  const auto consider = [&](StoreTime t) {
+    if (!std::isnan(t) && (!latest || t > *latest)) latest = t;
+  };
+  if (has_info) consider(announced_at);
+  for (const StoreTime t : committed_at) consider(t);
+  for (const StoreTime t : rejected_at) consider(t);
+  return latest;
+}
 
 std::string run_id_problem(const std::string& run_id) {
   if (run_id.empty()) return "run id is empty";
@@ -93,23 +121,26 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::create_extendible(f, "points", H5T_NATIVE_DOUBLE, 2, 8192);
     h5::create_extendible(f, "rejected_frame", H5T_NATIVE_UINT32, 0, 64);
     h5::create_extendible(f, "rejected_reason", fixed_string(kReasonBytes).get(), 0, 64);
+    for (const char* name : {"announced_at", "committed_at", "rejected_at"})
+      h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
   }
-  for (const char* name : {"announcements", "frame", "step", "time", "rho", "z", "previous", "distances", "counts",
-                           "offsets", "points", "rejected_frame", "rejected_reason"})
+  for (const char* name :
+       {"announcements", "announced_at", "frame", "step", "time", "rho", "z", "previous", "distances", "counts",
+        "offsets", "points", "committed_at", "rejected_frame", "rejected_reason", "rejected_at"})
     sets_.emplace(name, h5::Dataset(H5Dopen2(file_.get(), name, H5P_DEFAULT), std::string("open ") + name));
   // From here on the file stays valid for readers whatever happens to this process.
   check(H5Fstart_swmr_write(file_.get()), "H5Fstart_swmr_write " + fresh.string());
   if (previous) {
-    if (previous->has_info) write_info(previous->info);
-    for (const AnalyzedFrame& f : previous->frames) append(f);
-    for (const RejectedFrame& r : previous->rejected) append(r);
+    if (previous->has_info) write_info(previous->info, previous->announced_at);
+    for (std::size_t k = 0; k < previous->frames.size(); ++k) append(previous->frames[k], previous->committed_at[k]);
+    for (std::size_t k = 0; k < previous->rejected.size(); ++k) append(previous->rejected[k], previous->rejected_at[k]);
   }
   std::filesystem::rename(fresh, path);
 }
 
 hid_t StoreWriter::set(const char* name) const { return sets_.at(name).get(); }
 
-void StoreWriter::write_info(const RunInfo& info) {
+void StoreWriter::write_info(const RunInfo& info, StoreTime at) {
   nlohmann::json record = to_json(info);
   record.erase("config");
   record["config_json"] = info.config_json;
@@ -118,11 +149,12 @@ void StoreWriter::write_info(const RunInfo& info) {
     throw h5::Error("run announcement longer than " + std::to_string(kInfoBytes) + " bytes");
   const auto row = padded(text, kInfoBytes);
   const h5::Datatype type = fixed_string(kInfoBytes);
+  h5::append_rows(set("announced_at"), H5T_NATIVE_DOUBLE, &at, 1, 0);
   h5::append_rows(set("announcements"), type.get(), row.data(), 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
 }
 
-void StoreWriter::append(const AnalyzedFrame& f) {
+void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   const std::array<const Diagram*, 4> diagrams{&f.diagrams.normal.pd0, &f.diagrams.normal.pd1,
                                                &f.diagrams.tangential.pd0, &f.diagrams.tangential.pd1};
   std::array<std::uint64_t, kOffsets> offsets{};
@@ -146,15 +178,17 @@ void StoreWriter::append(const AnalyzedFrame& f) {
   h5::append_rows(set("distances"), H5T_NATIVE_DOUBLE, f.distances.value.data(), 1, 12);
   h5::append_rows(set("counts"), H5T_NATIVE_UINT64, counts.data(), 1, kCounts);
   h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
+  h5::append_rows(set("committed_at"), H5T_NATIVE_DOUBLE, &at, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &f.header.index, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
 }
 
-void StoreWriter::append(const RejectedFrame& r) {
+void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
   const auto row = padded(r.reason, kReasonBytes);
   const h5::Datatype type = fixed_string(kReasonBytes);
   h5::append_rows(set("rejected_reason"), type.get(), row.data(), 1, 0);
+  h5::append_rows(set("rejected_at"), H5T_NATIVE_DOUBLE, &at, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("rejected_frame"), H5T_NATIVE_UINT32, &r.index, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
@@ -182,6 +216,8 @@ StoredRun read_store(const std::filesystem::path& path) {
     }
   }
   const hid_t g = f.get();
+  const auto announced_at = optional_times(g, "announced_at", announcements.size(), file);
+  if (!announcements.empty()) out.announced_at = announced_at.back();
   const auto frame = h5::read_uint32s(g, "frame", 0, file);
   const auto step = h5::read_uint64s(g, "step", 0, file);
   const auto time = h5::read_doubles(g, "time", 0, file);
@@ -213,10 +249,12 @@ StoredRun read_store(const std::filesystem::path& path) {
     a.diagrams.tangential.vertices = c[3], a.diagrams.tangential.edges = c[4], a.diagrams.tangential.triangles = c[5];
     out.frames.push_back(std::move(a));
   }
+  out.committed_at = optional_times(g, "committed_at", out.frames.size(), file);
   const auto rejected_frame = h5::read_uint32s(g, "rejected_frame", 0, file);
   const auto rejected_reason = read_strings(g, "rejected_reason", kReasonBytes, file);
   for (std::size_t k = 0; k < std::min(rejected_frame.size(), rejected_reason.size()); ++k)
     out.rejected.push_back({rejected_frame[k], rejected_reason[k]});
+  out.rejected_at = optional_times(g, "rejected_at", out.rejected.size(), file);
   return out;
 }
 

@@ -4,6 +4,7 @@
 // restart. Schema: proto/store.md.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -11,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/analyzed_frame.hpp"
 #include "common/analysis/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
 
@@ -19,24 +20,21 @@ namespace fnet {
 
 inline constexpr const char* kStoreSchema = "fnet-store-1";
 
-struct AnalyzedFrame {
-  FrameHeader header;
-  FrameDiagramSet diagrams;
-  std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
-  StepDistances distances;                // meaningful only with a previous frame
-};
-
-struct RejectedFrame {
-  std::uint32_t index = 0;
-  std::string reason;
-  bool operator==(const RejectedFrame&) const = default;
-};
+// When something was written to a store: seconds since the Unix epoch (UTC), NaN for a record
+// of a store written before the time was kept.
+using StoreTime = double;
+StoreTime store_time_now();
 
 struct StoredRun {
   RunInfo info;
-  bool has_info = false;              // false until the run's announcement was seen
-  std::vector<AnalyzedFrame> frames;  // ascending index
+  bool has_info = false;                // false until the run's announcement was seen
+  StoreTime announced_at = NAN;         // when the last announcement was written
+  std::vector<AnalyzedFrame> frames;    // ascending index
+  std::vector<StoreTime> committed_at;  // when each frame was committed
   std::vector<RejectedFrame> rejected;
+  std::vector<StoreTime> rejected_at;  // when each frame was rejected
+  // The run's last activity the store knows of: the latest of those times (none if none known).
+  std::optional<StoreTime> last_activity() const;
 };
 
 // Appends to a run's store in SWMR mode, so that the file stays readable (with read_store, or
@@ -46,9 +44,9 @@ class StoreWriter {
   // Creates the store, or continues an existing one: its committed content is copied into a
   // fresh file that replaces it (a store left by a killed writer cannot be reopened for writing).
   StoreWriter(const std::filesystem::path& path, const std::string& run_id);
-  void write_info(const RunInfo& info);
-  void append(const AnalyzedFrame& frame);
-  void append(const RejectedFrame& rejected);
+  void write_info(const RunInfo& info, StoreTime at = store_time_now());
+  void append(const AnalyzedFrame& frame, StoreTime at = store_time_now());
+  void append(const RejectedFrame& rejected, StoreTime at = store_time_now());
 
  private:
   hid_t set(const char* name) const;

@@ -139,6 +139,7 @@ json summary_json(const RunSummary& s) {
               {"rho", nullptr},
               {"z", nullptr},
               {"seconds_since_last_frame", s.seconds_since_last_frame},
+              {"last_activity", s.last_activity ? json(*s.last_activity) : json(nullptr)},
               {"announced", s.has_info}};
   if (s.last_frame) {
     out["first_frame"] = *s.first_frame;

@@ -1,10 +1,9 @@
 #include "server/analysis/run_registry.hpp"
 
 #include <iostream>
+#include <variant>
 
 #include <boost/asio/post.hpp>
-
-#include "common/analysis/frame_analysis.hpp"
 
 namespace fnet::server {
 
@@ -22,16 +21,17 @@ std::vector<std::string> Registry::load() {
       StoredRun stored = read_store(entry.path());
       Run& run = run_locked(stored.info.run_id);
       run.has_info = stored.has_info;
+      run.last_activity = stored.last_activity();
       if (stored.has_info) run.info = stored.info;
+      std::vector<std::uint32_t> settled;
       for (AnalyzedFrame& f : stored.frames) {
         const std::uint32_t index = f.header.index;
-        run.seen.insert(index);
-        run.last_accepted = index;
+        settled.push_back(index);
         run.committed[index] = std::make_shared<const AnalyzedFrame>(std::move(f));
       }
-      for (const RejectedFrame& r : stored.rejected) run.seen.insert(r.index);
+      for (const RejectedFrame& r : stored.rejected) settled.push_back(r.index);
       run.rejected = std::move(stored.rejected);
-      run.frontier = run.seen.empty() ? 0 : *run.seen.rbegin() + 1;
+      run.pipeline.resume(settled, run.committed.empty() ? nullptr : run.committed.rbegin()->second);
     } catch (const std::exception& e) {
       problems.push_back(e.what());
     }
@@ -45,6 +45,7 @@ Registry::Run& Registry::run_locked(const std::string& run_id) {
   if (created) {
     run.run_id = run_id;
     run.info.run_id = run_id;
+    run.pipeline = RunPipeline(limits_.gap_timeout);
     try {
       run.store = std::make_unique<StoreWriter>(store_path(data_dir_, run_id), run_id);
     } catch (const std::exception& e) {
@@ -76,6 +77,7 @@ void Registry::on_info(const RunInfo& info) {
   if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
   run.has_info = true;
   run.info = info;
+  run.last_activity = store_time_now();
   if (run.store) try {
       run.store->write_info(info);
     } catch (const std::exception& e) {
@@ -98,132 +100,82 @@ void Registry::on_frame(RunFrame frame) {
     return;
   }
   Run& run = run_locked(frame.header.run_id);
-  const std::uint32_t index = frame.header.index;
-  run.last_frame_at = Clock::now();
-  if (!run.seen.insert(index).second) {
-    ++run.duplicates;
-    ++counters_.duplicates;
-    return;
+  run.last_activity = store_time_now();
+  RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
+  switch (admission.arrival) {
+    case RunPipeline::Arrival::duplicate:
+      ++counters_.duplicates;
+      return;
+    case RunPipeline::Arrival::late:
+      ++counters_.late;
+      break;
+    case RunPipeline::Arrival::queued:
+      post_locked(run, std::move(*admission.job));
+      break;
   }
-  if (index < run.frontier) {  // its place was given up after the gap timeout
-    ++counters_.late;
-    reject_locked(run, index, frame.frame.label + ": arrived after the gap timeout had skipped it");
-    return;
-  }
-  Slot& slot = run.pending[index];
-  slot.frame = std::make_shared<AnalyzedFrame>();
-  slot.frame->header = frame.header;
-  slot.arrived = Clock::now();
-  ++in_flight_;
-  boost::asio::post(pool_, [this, id = run.run_id, index, target = slot.frame, f = std::move(frame)]() mutable {
-    analyze(id, index, std::move(target), std::move(f));
+  publish_locked(run);
+}
+
+void Registry::post_locked(const Run& run, DiagramJob job) {
+  boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+    DiagramOutcome outcome = job.run();
+    std::lock_guard lock(mutex_);
+    Run& r = runs_.at(id);
+    post_locked(r, r.pipeline.analyzed(std::move(outcome)));
+    publish_locked(r);
   });
 }
 
-void Registry::analyze(std::string run_id, std::uint32_t index, std::shared_ptr<AnalyzedFrame> target, RunFrame frame) {
-  bool accepted = false;
-  std::string reason;
-  try {
-    validate(frame.frame);
-    target->diagrams = analyze_frame(frame.frame);  // nobody reads them before stage `analyzed`
-    accepted = true;
-  } catch (const std::exception& e) {
-    reason = e.what();
-  }
-  std::lock_guard lock(mutex_);
-  Run& run = runs_.at(run_id);
-  Slot& slot = run.pending.at(index);
-  if (accepted) {
-    slot.stage = Stage::analyzed;
-  } else {
-    slot.stage = Stage::rejected;
-    slot.reason = reason;
-  }
-  advance_locked(run);
+void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
+  for (DistanceJob& job : jobs)
+    boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+      const DistanceOutcome outcome = job.run();
+      std::lock_guard lock(mutex_);
+      Run& r = runs_.at(id);
+      r.pipeline.measured(outcome);
+      publish_locked(r);
+    });
 }
 
-void Registry::measure(std::string run_id, std::uint32_t index, std::shared_ptr<const FrameDiagramSet> previous,
-                       std::shared_ptr<const FrameDiagramSet> current) {
-  const StepDistances distances = step_distances(*previous, *current);
-  std::lock_guard lock(mutex_);
-  Run& run = runs_.at(run_id);
-  Slot& slot = run.pending.at(index);
-  slot.frame->distances = distances;
-  slot.stage = Stage::ready;
-  commit_locked(run);
-}
-
-// Resolves frames at the frontier in index order: a rejected frame is recorded; an analyzed one
-// learns its predecessor (the last accepted frame) and goes to have its distances measured.
-void Registry::advance_locked(Run& run) {
-  while (true) {
-    const auto it = run.pending.find(run.frontier);
-    if (it == run.pending.end() || it->second.stage == Stage::analyzing) break;
-    Slot& slot = it->second;
-    if (slot.stage == Stage::analyzed) {
-      const std::optional<std::uint32_t> before = run.last_accepted;
-      slot.frame->previous = before;
-      run.last_accepted = run.frontier;
-      if (before) {
-        const auto c = run.committed.find(*before);
-        const std::shared_ptr<const AnalyzedFrame> prior =
-            c != run.committed.end() ? c->second : run.pending.at(*before).frame;
-        // Aliasing pointers: the diagrams stay owned by their frames.
-        std::shared_ptr<const FrameDiagramSet> previous(prior, &prior->diagrams);
-        std::shared_ptr<const FrameDiagramSet> current(slot.frame, &slot.frame->diagrams);
-        slot.stage = Stage::measuring;
-        boost::asio::post(pool_, [this, id = run.run_id, index = run.frontier, previous, current] {
-          measure(id, index, previous, current);
-        });
-      } else {
-        slot.stage = Stage::ready;
-      }
+void Registry::publish_locked(Run& run) {
+  for (Settlement& s : run.pipeline.take_settled()) {
+    if (auto* accepted = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&s)) {
+      commit_locked(run, std::move(*accepted));
+    } else if (const auto* rejected = std::get_if<RejectedFrame>(&s)) {
+      reject_locked(run, *rejected);
+    } else if (const auto* skipped = std::get_if<SkippedFrames>(&s)) {
+      counters_.skipped += skipped->last - skipped->first + 1;
+      note_rejection_locked("run " + run.run_id + ": frames " + std::to_string(skipped->first) + ".." +
+                            std::to_string(skipped->last) + " never arrived; skipped after the gap timeout");
     }
-    ++run.frontier;
-  }
-  commit_locked(run);
-}
-
-// Commits the leading run of finished frames: the store and the subscribers see index order.
-void Registry::commit_locked(Run& run) {
-  while (!run.pending.empty()) {
-    auto it = run.pending.begin();
-    Slot& slot = it->second;
-    const std::uint32_t index = it->first;
-    if (slot.stage == Stage::rejected) {
-      reject_locked(run, index, slot.reason);
-    } else if (slot.stage == Stage::ready) {
-      const std::shared_ptr<const AnalyzedFrame> frame = std::move(slot.frame);
-      if (run.store) try {
-          run.store->append(*frame);
-        } catch (const std::exception& e) {
-          store_error_locked(run, e);
-        }
-      run.committed[index] = frame;
-      ++counters_.analyzed;
-      recent_commits_.push_back(Clock::now());
-      const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances};
-      for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
-        const bool keep =
-            (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
-        s = keep ? std::next(s) : subscriptions_.erase(s);
-      }
-    } else {
-      break;  // still analyzing or measuring
-    }
-    run.pending.erase(it);
-    --in_flight_;
   }
   const auto horizon = Clock::now() - std::chrono::seconds(10);
   while (!recent_commits_.empty() && recent_commits_.front() < horizon) recent_commits_.pop_front();
 }
 
-void Registry::reject_locked(Run& run, std::uint32_t index, const std::string& reason) {
-  const RejectedFrame rejected{index, reason};
+// The store and the subscribers see index order, the pipeline's.
+void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame) {
+  if (run.store) try {
+      run.store->append(*frame);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+  ++counters_.analyzed;
+  recent_commits_.push_back(Clock::now());
+  const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances};
+  run.committed[frame->header.index] = std::move(frame);
+  for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
+    const bool keep =
+        (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
+    s = keep ? std::next(s) : subscriptions_.erase(s);
+  }
+}
+
+void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
   run.rejected.push_back(rejected);
   ++counters_.rejected;
-  note_rejection_locked(reason);
-  std::cerr << "fnet-server: rejected " << reason << "\n";
+  note_rejection_locked(rejected.reason);
+  std::cerr << "fnet-server: rejected " << rejected.reason << "\n";
   if (run.store) try {
       run.store->append(rejected);
     } catch (const std::exception& e) {
@@ -235,25 +187,16 @@ void Registry::check_gaps() {
   std::lock_guard lock(mutex_);
   const auto now = Clock::now();
   for (auto& [id, run] : runs_) {
-    if (run.pending.empty() || run.pending.count(run.frontier)) continue;
-    const auto first = run.pending.begin();
-    if (first->first < run.frontier) continue;  // in progress, the frontier passed it
-    Clock::time_point oldest = now;
-    for (const auto& [index, slot] : run.pending) oldest = std::min(oldest, slot.arrived);
-    if (now - oldest < limits_.gap_timeout) continue;
-    const std::uint32_t skipped = first->first - run.frontier;
-    run.skipped += skipped;
-    counters_.skipped += skipped;
-    note_rejection_locked("run " + id + ": frames " + std::to_string(run.frontier) + ".." +
-                          std::to_string(first->first - 1) + " never arrived; skipped after the gap timeout");
-    run.frontier = first->first;
-    advance_locked(run);
+    post_locked(run, run.pipeline.skip_gaps(now));
+    publish_locked(run);
   }
 }
 
 std::size_t Registry::in_flight() const {
   std::lock_guard lock(mutex_);
-  return in_flight_;
+  std::size_t n = 0;
+  for (const auto& [id, run] : runs_) n += run.pipeline.pending();
+  return n;
 }
 
 RunSummary Registry::summary_locked(const std::string& id, const Run& run) const {
@@ -263,16 +206,17 @@ RunSummary Registry::summary_locked(const std::string& id, const Run& run) const
   s.info = run.info;
   s.frames = run.committed.size();
   s.rejected = run.rejected.size();
-  s.pending = run.pending.size();
-  s.duplicates = run.duplicates;
-  s.skipped = run.skipped;
+  s.pending = run.pipeline.pending();
+  s.duplicates = run.pipeline.counts().duplicates;
+  s.skipped = run.pipeline.counts().skipped;
   if (!run.committed.empty()) {
     s.first_frame = run.committed.begin()->first;
     s.last_frame = run.committed.rbegin()->first;
     s.last_rho = run.committed.rbegin()->second->header.rho;
     s.last_z = run.committed.rbegin()->second->header.z;
   }
-  s.seconds_since_last_frame = std::chrono::duration<double>(Clock::now() - run.last_frame_at).count();
+  s.last_activity = run.last_activity;
+  s.seconds_since_last_frame = store_time_now() - run.last_activity.value_or(run.known_since);
   return s;
 }
 
@@ -321,9 +265,10 @@ std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, 
 
 std::string Registry::newest_run() const {
   std::lock_guard lock(mutex_);
+  // A run whose activity is unknown (a store from before the times were kept) is the oldest.
   const Run* newest = nullptr;
   for (const auto& [id, run] : runs_)
-    if (!newest || run.last_frame_at > newest->last_frame_at) newest = &run;
+    if (!newest || run.last_activity > newest->last_activity) newest = &run;
   return newest ? newest->run_id : std::string();
 }
 
@@ -372,8 +317,8 @@ double Registry::oldest_pending_seconds() const {
   const auto now = Clock::now();
   double oldest = 0;
   for (const auto& [id, run] : runs_)
-    for (const auto& [index, slot] : run.pending)
-      oldest = std::max(oldest, std::chrono::duration<double>(now - slot.arrived).count());
+    if (const auto arrived = run.pipeline.oldest_arrival())
+      oldest = std::max(oldest, std::chrono::duration<double>(now - *arrived).count());
   return oldest;
 }
 

@@ -1,8 +1,9 @@
-// Every run the server knows: frames flow in from the ingest thread, are analyzed on a bounded
-// thread pool in two stages (diagrams of each frame; then distances between consecutive accepted
-// frames, each pair independent), and are committed in index order to the run's store and to
-// the subscribers. Duplicates are dropped, out-of-order frames wait for their predecessors, a
-// frame missing for longer than the gap timeout is skipped, and a restart reloads every store.
+// Every run the server knows: frames flow in from the ingest thread and each run's RunPipeline
+// decides their order and acceptance (duplicates dropped, out-of-order frames waiting for their
+// predecessors, a frame missing for longer than the gap timeout skipped, distances to the
+// previous accepted frame). The registry adds the concurrency, running the pipelines' jobs on a
+// bounded thread pool under one lock, and the publication: what a pipeline settles is committed
+// in index order to the run's store and to the subscribers. A restart reloads every store.
 #pragma once
 
 #include <chrono>
@@ -14,18 +15,18 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
 #include <boost/asio/thread_pool.hpp>
 
 #include "common/analysis/run_frame.hpp"
+#include "common/analysis/run_pipeline.hpp"
 #include "common/store/analysis_store.hpp"
 
 namespace fnet::server {
 
-using Clock = std::chrono::steady_clock;
+using Clock = PipelineClock;
 
 struct SeriesPoint {
   std::string run_id;
@@ -45,7 +46,10 @@ struct RunSummary {
   std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
   std::optional<std::uint32_t> first_frame, last_frame;
   double last_rho = 0, last_z = 0;
-  double seconds_since_last_frame = 0;
+  // Seconds since the Unix epoch of the last frame received or announcement, kept in the store
+  // so that it survives a restart; none for a run known only from a store without times.
+  std::optional<StoreTime> last_activity;
+  double seconds_since_last_frame = 0;  // since last_activity, or since the server learned of the run
 };
 
 struct Counters {
@@ -95,27 +99,15 @@ class Registry {
   double oldest_pending_seconds() const;
 
  private:
-  enum class Stage { analyzing, analyzed, rejected, measuring, ready };
-  struct Slot {
-    Stage stage = Stage::analyzing;
-    // Filled in stage by stage and committed as it is: the diagrams are never copied. Its
-    // diagrams are written before stage `analyzed` and only read after; the rest under the lock.
-    std::shared_ptr<AnalyzedFrame> frame;
-    std::string reason;
-    Clock::time_point arrived;
-  };
   struct Run {
     std::string run_id;
     bool has_info = false;
     RunInfo info;
+    RunPipeline pipeline;  // the order and acceptance of its frames
     std::map<std::uint32_t, std::shared_ptr<const AnalyzedFrame>> committed;
     std::vector<RejectedFrame> rejected;
-    std::set<std::uint32_t> seen;
-    std::map<std::uint32_t, Slot> pending;
-    std::uint32_t frontier = 0;
-    std::optional<std::uint32_t> last_accepted;
-    std::size_t duplicates = 0, skipped = 0;
-    Clock::time_point last_frame_at = Clock::now();
+    std::optional<StoreTime> last_activity;
+    StoreTime known_since = store_time_now();
     std::unique_ptr<StoreWriter> store;
   };
   struct Subscription {
@@ -124,12 +116,13 @@ class Registry {
   };
 
   Run& run_locked(const std::string& run_id);
-  void analyze(std::string run_id, std::uint32_t index, std::shared_ptr<AnalyzedFrame> target, RunFrame frame);
-  void measure(std::string run_id, std::uint32_t index, std::shared_ptr<const FrameDiagramSet> previous,
-               std::shared_ptr<const FrameDiagramSet> current);
-  void advance_locked(Run& run);
-  void commit_locked(Run& run);
-  void reject_locked(Run& run, std::uint32_t index, const std::string& reason);
+  // Runs jobs on the pool; each hands its outcome back to the run's pipeline under the lock.
+  void post_locked(const Run& run, DiagramJob job);
+  void post_locked(const Run& run, std::vector<DistanceJob> jobs);
+  // Publishes what the run's pipeline settled: the store, the subscribers, the counters.
+  void publish_locked(Run& run);
+  void commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame);
+  void reject_locked(Run& run, const RejectedFrame& rejected);
   void store_error_locked(Run& run, const std::exception& e);
   void note_rejection_locked(std::string reason);
   RunSummary summary_locked(const std::string& id, const Run& run) const;
@@ -144,7 +137,6 @@ class Registry {
   Counters counters_;
   std::deque<std::string> recent_rejections_;
   std::deque<Clock::time_point> recent_commits_;
-  std::size_t in_flight_ = 0;
 };
 
 }  // namespace fnet::server

@@ -1,11 +1,11 @@
 // fnet-analyze store: the analysis fnet-server does live, done offline into the same store file.
 #include <iostream>
-#include <map>
+#include <variant>
 
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/run_pipeline.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/analysis/commands.hpp"
 #include "server/analysis/run_source.hpp"
@@ -28,36 +28,31 @@ int store_command(const std::vector<std::string>& args) {
   options.add_options()("data-dir", po::value(&data_dir)->required(), "directory of run stores");
   if (!parse_options(options, args)) return 0;
   auto [info, frames] = source.read();
-  std::map<std::uint32_t, RunFrame*> ordered;  // first occurrence of each index wins, as live
-  for (RunFrame& f : frames) ordered.try_emplace(f.header.index, &f);
-
   std::filesystem::create_directories(data_dir);
   const std::filesystem::path path = store_path(data_dir, info.run_id);
   std::filesystem::remove(path);
   StoreWriter store(path, info.run_id);
   store.write_info(info);
-  std::optional<AnalyzedFrame> previous;
-  std::size_t accepted = 0, rejected = 0;
-  for (auto& [index, frame] : ordered) {
-    try {
-      validate(frame->frame);
-    } catch (const FrameError& e) {
-      store.append(RejectedFrame{index, e.what()});
-      std::cerr << "fnet-analyze store: rejected " << e.what() << "\n";
-      ++rejected;
-      continue;
+  // The server's pipeline, fed the file's frames as if they had arrived all at once: a repeated
+  // index counts once (its first occurrence), and a missing one is skipped when the run ends.
+  RunPipeline pipeline;
+  const auto write = [&](std::vector<Settlement> settled) {
+    for (const Settlement& s : settled) {
+      if (const auto* accepted = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&s)) {
+        store.append(**accepted);
+      } else if (const auto* rejected = std::get_if<RejectedFrame>(&s)) {
+        store.append(*rejected);
+        std::cerr << "fnet-analyze store: rejected " << rejected->reason << "\n";
+      } else if (const auto* skipped = std::get_if<SkippedFrames>(&s)) {
+        std::cerr << "fnet-analyze store: run " << info.run_id << " has no frames " << skipped->first << ".."
+                  << skipped->last << "\n";
+      }
     }
-    AnalyzedFrame current;
-    current.header = frame->header;
-    current.diagrams = analyze_frame(frame->frame);
-    if (previous) {
-      current.previous = previous->header.index;
-      current.distances = step_distances(previous->diagrams, current.diagrams);
-    }
-    store.append(current);
-    previous = std::move(current);
-    ++accepted;
-  }
+  };
+  const auto now = PipelineClock::now();
+  for (RunFrame& frame : frames) write(pipeline.push(std::move(frame), now));
+  write(pipeline.finish());
+  const std::size_t accepted = pipeline.counts().accepted, rejected = pipeline.counts().rejected;
   std::cout << nlohmann::json{{"run", info.run_id},
                               {"store", path.string()},
                               {"frames", accepted},

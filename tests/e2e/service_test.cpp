@@ -212,6 +212,34 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
   pub->stop();
 }
 
+TEST(Service, RunsKeepTheirLastActivityAndTheNewestRunAcrossRestarts) {
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1});
+  const fs::path data = tmp.path() / "data";
+  // Name order is the reverse of activity order, so that neither can pass for the other.
+  const StoredRun older = offline_store(run_dir, "b-older", data, tmp.path() / "store1.log");
+  std::this_thread::sleep_for(1100ms);
+  const StoredRun newer = offline_store(run_dir, "a-newer", data, tmp.path() / "store2.log");
+  ASSERT_TRUE(older.last_activity() && newer.last_activity());
+  ASSERT_LT(*older.last_activity(), *newer.last_activity());
+  std::this_thread::sleep_for(1500ms);
+  for (int restart = 0; restart < 2; ++restart) {  // the second start reads the stores the first rewrote
+    SCOPED_TRACE(restart);
+    Server server = start_server(data, 57, tmp.path() / ("server" + std::to_string(restart) + ".log"));
+    RpcClient rpc("127.0.0.1", server.port);
+    const json listed = rpc.call("runs.list");
+    ASSERT_EQ(listed["runs"].size(), 2u);
+    EXPECT_EQ(rpc.call("run.get")["run"], "a-newer");  // the default run is the newest
+    for (const json& r : listed["runs"]) {
+      const StoredRun& stored = r["run"] == "a-newer" ? newer : older;
+      EXPECT_GE(r["seconds_since_last_frame"].get<double>(), r["run"] == "a-newer" ? 1.5 : 2.6) << r.dump();
+      ASSERT_TRUE(r.contains("last_activity")) << r.dump();
+      EXPECT_EQ(r["last_activity"].get<double>(), *stored.last_activity()) << r.dump();
+    }
+    EXPECT_EQ(server.process->stop(), 0);
+  }
+}
+
 TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
   testing::TempDir tmp;
   const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4}, [](int k, std::vector<std::string>& rows) {

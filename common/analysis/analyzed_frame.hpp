@@ -1,0 +1,27 @@
+// What the analysis of a run settles for each of its frames: accepted with its diagrams and its
+// distances to the previous accepted frame, or rejected with a reason.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/run_frame.hpp"
+
+namespace fnet {
+
+struct AnalyzedFrame {
+  FrameHeader header;
+  FrameDiagramSet diagrams;
+  std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
+  StepDistances distances;                // meaningful only with a previous frame
+};
+
+struct RejectedFrame {
+  std::uint32_t index = 0;
+  std::string reason;
+  bool operator==(const RejectedFrame&) const = default;
+};
+
+}  // namespace fnet

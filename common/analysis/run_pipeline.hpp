@@ -1,0 +1,140 @@
+// The rule every analysis of a run follows, live (fnet-server) or offline (fnet-analyze store):
+// frames arrive in any order, possibly repeated; each is validated and, if valid, its diagrams
+// are computed; frames are settled in index order, an accepted one with its distances to the
+// previous ACCEPTED frame, a rejected one with its reason; a frame still missing when a later one
+// has waited for the gap timeout is skipped, and one arriving after its place was skipped is
+// rejected as late.
+//
+// The costly work is handed out as jobs, pure functions of what they hold, so that a caller may
+// run them on other threads: admit() returns a frame's diagram job, analyzed() and skip_gaps()
+// return distance jobs, and the caller hands each job's outcome back. Calls on one pipeline must
+// be serialized by the caller; jobs may run concurrently with them and with each other. push(),
+// expire() and finish() do everything inline, for one thread. Time is given, never read, so
+// that the gap timeout is a function of the arguments.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/analysis/analyzed_frame.hpp"
+#include "common/analysis/run_frame.hpp"
+
+namespace fnet {
+
+using PipelineClock = std::chrono::steady_clock;
+
+struct DiagramOutcome {
+  std::uint32_t index = 0;
+  std::optional<FrameDiagramSet> diagrams;  // empty when the frame was rejected
+  std::string reason;                       // why it was rejected
+};
+
+// Validation and diagrams of one frame.
+struct DiagramJob {
+  std::uint32_t index = 0;
+  RunFrame frame;
+  DiagramOutcome run() const;
+};
+
+struct DistanceOutcome {
+  std::uint32_t index = 0;
+  StepDistances distances;
+};
+
+// The twelve distances from the previous accepted frame to frame `index`. The diagrams are
+// shared with the pipeline's frames, which never write them again.
+struct DistanceJob {
+  std::uint32_t index = 0;
+  std::shared_ptr<const FrameDiagramSet> previous, current;
+  EssentialConvention essential = EssentialConvention::floor;
+  DistanceOutcome run() const;
+};
+
+// Frames first..last never arrived and were given up.
+struct SkippedFrames {
+  std::uint32_t first = 0, last = 0;
+  bool operator==(const SkippedFrames&) const = default;
+};
+
+// What the pipeline settled, in index order (except a late frame's rejection, settled when it
+// arrives, behind the frames settled already).
+using Settlement = std::variant<std::shared_ptr<const AnalyzedFrame>, RejectedFrame, SkippedFrames>;
+
+struct PipelineCounts {
+  std::size_t accepted = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0;  // rejected includes late
+};
+
+class RunPipeline {
+ public:
+  enum class Arrival { queued, duplicate, late };
+  struct Admission {
+    Arrival arrival = Arrival::queued;
+    std::optional<DiagramJob> job;  // present when queued
+  };
+
+  explicit RunPipeline(std::chrono::milliseconds gap_timeout = std::chrono::seconds(30),
+                       EssentialConvention essential = EssentialConvention::floor);
+
+  // Continues a run whose frames `settled` were accepted or rejected earlier (a reloaded store),
+  // the distances of the next accepted frame measured from `last_accepted` (if any). Only before
+  // the first admit().
+  void resume(const std::vector<std::uint32_t>& settled, std::shared_ptr<const AnalyzedFrame> last_accepted);
+
+  // A frame arriving at `now`: a repeated index is a duplicate and dropped; an index whose place
+  // was skipped is settled as rejected (late); any other waits for its diagram job's outcome.
+  Admission admit(RunFrame frame, PipelineClock::time_point now);
+  // Hands back a diagram job's outcome; returns the distance jobs it made possible.
+  std::vector<DistanceJob> analyzed(DiagramOutcome outcome);
+  // Hands back a distance job's outcome.
+  void measured(const DistanceOutcome& outcome);
+  // Skips the missing frames before the first waiting one once a frame after them has waited
+  // for the gap timeout; returns the distance jobs this made possible.
+  std::vector<DistanceJob> skip_gaps(PipelineClock::time_point now);
+  // What was settled since the last call, in settlement order.
+  std::vector<Settlement> take_settled();
+
+  // One thread: admits the frame, runs its jobs inline and returns what was settled.
+  std::vector<Settlement> push(RunFrame frame, PipelineClock::time_point now);
+  // One thread: skip_gaps() with its jobs run inline.
+  std::vector<Settlement> expire(PipelineClock::time_point now);
+  // One thread, at the end of a run: nothing more will arrive, so every gap is skipped now.
+  std::vector<Settlement> finish();
+
+  // Frames admitted and not yet settled.
+  std::size_t pending() const { return pending_.size(); }
+  std::optional<PipelineClock::time_point> oldest_arrival() const;
+  const PipelineCounts& counts() const { return counts_; }
+
+ private:
+  enum class Stage { analyzing, analyzed, rejected, measuring, ready };
+  struct Slot {
+    Stage stage = Stage::analyzing;
+    std::shared_ptr<AnalyzedFrame> frame;  // its diagrams are written once, in analyzed()
+    std::string reason;
+    PipelineClock::time_point arrived;
+  };
+
+  std::vector<DistanceJob> advance();
+  std::optional<std::vector<DistanceJob>> skip_one(bool always, PipelineClock::time_point now);
+  void settle();
+  void run_inline(std::vector<DistanceJob> jobs);
+
+  std::chrono::milliseconds gap_timeout_;
+  EssentialConvention essential_;
+  std::set<std::uint32_t> seen_;
+  std::map<std::uint32_t, Slot> pending_;
+  std::uint32_t frontier_ = 0;  // the next index to resolve: every frame before it is resolved
+  std::shared_ptr<const AnalyzedFrame> last_accepted_;
+  std::deque<Settlement> settled_;
+  PipelineCounts counts_;
+};
+
+}  // namespace fnet
