@@ -145,7 +145,7 @@ int main(int argc, char** argv) try {
     if (vm.count(flag)) set_from_text(p, f, vm[flag].as<std::string>());
   }
   validate(p);
-  if (!run_id.empty()) {
+  if (vm.count("run-id")) {
     if (const std::string problem = fnet::run_id_problem(run_id); !problem.empty())
       throw po::error("--run-id: " + problem);
   }

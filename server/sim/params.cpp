@@ -144,6 +144,9 @@ void validate(const Params& p) {
                         [](Integrator Params::*) {}},
                f.member);
   }
+  if (!p.box && p.rho_final <= p.rho_initial)
+    throw std::invalid_argument("invalid parameter rho_final (--rho-final): " + shortest(p.rho_final) +
+                                " is not above the start's packing fraction, rho_initial " + shortest(p.rho_initial));
   if (p.box && p.wall_diameter > *p.box)
     throw std::invalid_argument("invalid parameter: wall_diameter must be at most the box side");
 }

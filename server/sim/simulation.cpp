@@ -1,6 +1,7 @@
 #include "server/sim/simulation.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -94,13 +95,17 @@ Simulation make_lattice(const Params& p) {
   const double rho0 = area / (*q.box * *q.box);
   if (p.box) q.rho_initial = rho0;  // what the given box makes of it, so that the recorded parameters agree
   const double a = *q.box / static_cast<double>(side);
+  const auto text = [](double v) {
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 6).ptr);
+  };
   if (a < 1.0)
-    throw std::invalid_argument("invalid parameter box (--box, --rho-initial): a side of " + std::to_string(*q.box) +
-                                " d puts " + std::to_string(p.particles) +
+    throw std::invalid_argument("invalid parameter box (--box, --rho-initial): a side of " + text(*q.box) + " d puts " +
+                                std::to_string(p.particles) +
                                 " grains on a square lattice closer than d_ave (start at a lower density)");
   if (q.rho_final <= rho0)
-    throw std::invalid_argument("invalid parameter rho_final (--rho-final): " + std::to_string(q.rho_final) +
-                                " is not above the start's packing fraction " + std::to_string(rho0));
+    throw std::invalid_argument("invalid parameter rho_final (--rho-final): " + text(q.rho_final) +
+                                " is not above the start's packing fraction " + text(rho0));
   for (std::size_t i = 0; i < grains.size(); ++i) {
     grains[i].x = (static_cast<double>(i % side) + 0.5) * a;
     grains[i].y = (static_cast<double>(i / side) + 0.5) * a;
