@@ -222,13 +222,13 @@ int main(int argc, char** argv) try {
                        "for late subscribers only until fnet-simd exits (--linger)\n");
       }
     };
-  o.relaxed = [quiet = vm.count("quiet") > 0](const Relaxation& r) {
+  o.relaxed = [](const Relaxation& r) {  // once per run, also with --quiet
     if (r.capped)
       std::fprintf(stderr,
                    "fnet-simd: warning: relaxation stopped by --relax-max-time after %lld steps, translational "
                    "kinetic energy per grain %.3g above the target %.3g: compressing a start that is not at rest\n",
                    static_cast<long long>(r.steps), r.energy, r.target);
-    else if (!quiet)
+    else
       std::fprintf(stderr, "fnet-simd: relaxed in %lld steps: translational kinetic energy per grain %.3g < %.3g\n",
                    static_cast<long long>(r.steps), r.energy, r.target);
   };
