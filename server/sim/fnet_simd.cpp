@@ -165,8 +165,8 @@ int main(int argc, char** argv) try {
                           {"gamma_n", c.gamma_n},
                           {"dt", c.dt},
                           {"kt", c.kt},
-                          {"wall_speed_internal", c.wall_speed},
-                          {"rho_initial", resume ? 0.0 : packing_fraction(sim)}}}};
+                          {"wall_speed_internal", c.wall_speed}}}};
+    if (!resume) j["derived"]["rho_initial"] = packing_fraction(sim);  // of the start the box makes
     std::cout << j.dump(2) << "\n";
     return 0;
   }
