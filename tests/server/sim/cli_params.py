@@ -40,7 +40,11 @@ def show(*args):
     if res.returncode != 0:
         check(False, f"--show-params {' '.join(args)}: rc {res.returncode}: {res.stderr.strip()}")
         return None
-    return json.loads(res.stdout)
+    shown = json.loads(res.stdout)
+    if "rho_initial" not in shown["derived"]:
+        check(False, f"--show-params {' '.join(args)} gives the start's packing fraction")
+        return None
+    return shown
 
 
 # Bad values: exit 2, the flag named, nothing written.
