@@ -13,8 +13,6 @@ domain=${DOMAIN_ID:-0}
 data=${DATA_DIR:-build/demo-data}
 export CYCLONEDDS_URI="file://$PWD/deploy/cyclonedds-loopback.xml"
 
-# The box holds the disks at rho ~ 0.63 at the start, as the paper's 2 000 disks in 50 x 50.
-box=$(awk -v n="$particles" 'BEGIN { printf "%.3f", 50 * sqrt(n / 2000) }')
 run_id="demo-$(date +%Y%m%d-%H%M%S)"
 mkdir -p "$data"
 
@@ -27,8 +25,9 @@ pids+=($!)
 for _ in $(seq 100); do grep -q listening "$data/server.log" 2>/dev/null && break; sleep 0.1; done
 echo "fnet-server: $(head -1 "$data/server.log")"
 
-echo "fnet-simd: $particles disks, box $box, wall speed $speed d/tau_c, $frames frames, run $run_id"
-"$bin/server/sim/fnet-simd" --particles "$particles" --box "$box" --compression-speed "$speed" --frames "$frames" \
+# The box is sized so that the disks start at rho 0.63 (fnet-simd's --rho-initial), as the paper's.
+echo "fnet-simd: $particles disks, wall speed $speed d/tau_c, $frames frames, run $run_id"
+"$bin/server/sim/fnet-simd" --particles "$particles" --compression-speed "$speed" --frames "$frames" \
   --run-id "$run_id" --domain "$domain" --out "$data/$run_id.run.h5" --quiet > "$data/simd.log" 2>&1 &
 pids+=($!)
 

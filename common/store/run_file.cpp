@@ -1,6 +1,7 @@
 #include "common/store/run_file.hpp"
 
-#include <cstdio>
+#include <algorithm>
+#include <array>
 #include <string>
 
 #include "common/store/hdf5_io.hpp"
@@ -10,10 +11,18 @@ namespace {
 
 using h5::check;
 
-std::string frame_name(std::uint32_t index) {
-  char name[16];
-  std::snprintf(name, sizeof name, "%06u", index);
-  return name;
+// Per frame (one row each); "frame" last, the commit mark.
+constexpr const char* kFrameColumns[] = {"step", "time", "rho", "z", "particle_count", "offsets"};
+// Rows of many frames, located by a frame's "offsets".
+constexpr const char* kBulk[] = {"particles", "contact_pairs", "contact_forces", "wall_contact_particles",
+                                 "wall_contact_forces"};
+constexpr std::size_t kOffsets = 6;  // begin and end rows in particles, contacts, wall contacts
+
+h5::PropertyList latest_format() {
+  h5::PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+        "H5Pset_libver_bounds");  // SWMR needs it
+  return fapl;
 }
 
 }  // namespace
@@ -52,55 +61,53 @@ RunInfo read_run_info(hid_t root, const std::string& where) {
   return i;
 }
 
-void write_frame_header(hid_t group, const FrameHeader& h) {
-  h5::write_attribute(group, "frame", h.index);
-  h5::write_attribute(group, "step", h.step);
-  h5::write_attribute(group, "time", h.time);
-  h5::write_attribute(group, "rho", h.rho);
-  h5::write_attribute(group, "z", h.z);
-}
+RunFileWriter::RunFileWriter(const std::filesystem::path& path, const RunInfo& info) { create(path, info); }
 
-FrameHeader read_frame_header(hid_t group, const std::string& run_id, const std::string& where) {
-  return {run_id,
-          h5::read_uint32(group, "frame", where),
-          h5::read_uint64(group, "step", where),
-          h5::read_double(group, "time", where),
-          h5::read_double(group, "rho", where),
-          h5::read_double(group, "z", where)};
-}
-
-RunFileWriter::RunFileWriter(const std::filesystem::path& path, const RunInfo& info) {
+void RunFileWriter::create(const std::filesystem::path& path, const RunInfo& info) {
   h5::quiet();
-  file_ = h5::File(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path.string());
-  h5::Group root(H5Gopen2(file_.get(), "/", H5P_DEFAULT), "open /");
-  h5::write_attribute(root.get(), "schema", std::string(kRunFileSchema));
-  write_run_info(root.get(), info);
-  h5::Group frames(H5Gcreate2(file_.get(), "/frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create /frames");
-  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush");
+  const h5::PropertyList fapl = latest_format();
+  file_ = h5::File(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "create " + path.string());
+  const hid_t f = file_.get();
+  {
+    h5::Group root(H5Gopen2(f, "/", H5P_DEFAULT), "open /");
+    h5::write_attribute(root.get(), "schema", std::string(kRunFileSchema));
+    write_run_info(root.get(), info);
+  }
+  h5::create_extendible(f, "frame", H5T_NATIVE_UINT32, 0, 256);
+  h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
+  for (const char* name : {"time", "rho", "z"}) h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
+  h5::create_extendible(f, "particle_count", H5T_NATIVE_UINT64, 0, 256);
+  h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kOffsets, 256);
+  h5::create_extendible(f, "particles", H5T_NATIVE_DOUBLE, 3, 4096);
+  h5::create_extendible(f, "contact_pairs", H5T_NATIVE_UINT32, 2, 4096);
+  h5::create_extendible(f, "contact_forces", H5T_NATIVE_DOUBLE, 2, 4096);
+  h5::create_extendible(f, "wall_contact_particles", H5T_NATIVE_UINT32, 0, 1024);
+  h5::create_extendible(f, "wall_contact_forces", H5T_NATIVE_DOUBLE, 2, 1024);
+  sets_.emplace("frame", h5::Dataset(H5Dopen2(f, "frame", H5P_DEFAULT), "open frame"));
+  for (const char* name : kFrameColumns) sets_.emplace(name, h5::Dataset(H5Dopen2(f, name, H5P_DEFAULT), name));
+  for (const char* name : kBulk) sets_.emplace(name, h5::Dataset(H5Dopen2(f, name, H5P_DEFAULT), name));
+  // From here on the file stays valid for readers (SWMR), whatever happens to this process;
+  // no object may be created any more, only these datasets grown.
+  check(H5Fstart_swmr_write(f), "H5Fstart_swmr_write " + path.string());
 }
 
 RunFileWriter RunFileWriter::reopen(const std::filesystem::path& path, std::uint32_t keep) {
-  h5::quiet();
+  // A file in SWMR mode cannot be reopened for writing after its writer was killed: the frames
+  // to keep are read back and written into a fresh file that replaces it.
+  RunFileContents old = read_run_file(path);
+  const std::filesystem::path fresh = path.string() + ".new";
   RunFileWriter w;
-  w.file_ = h5::File(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open " + path.string());
-  h5::Group frames(H5Gopen2(w.file_.get(), "/frames", H5P_DEFAULT), path.string() + ": open /frames");
-  for (const std::string& name : h5::member_names(frames.get(), path.string() + ": /frames")) {
-    if (std::stoul(name) >= keep)
-      check(H5Ldelete(frames.get(), name.c_str(), H5P_DEFAULT), "delete frame " + name);
-    else
-      ++w.frames_;
-  }
-  check(H5Fflush(w.file_.get(), H5F_SCOPE_GLOBAL), "flush");
+  w.create(fresh, old.info);
+  for (const RunFrame& f : old.frames)
+    if (f.header.index < keep) w.append(f);
+  std::filesystem::rename(fresh, path);
   return w;
 }
 
+hid_t RunFileWriter::set(const char* name) const { return sets_.at(name).get(); }
+
 void RunFileWriter::append(const RunFrame& rf) {
   const Frame& f = rf.frame;
-  const std::string name = "/frames/" + frame_name(rf.header.index);
-  h5::Group g(H5Gcreate2(file_.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create " + name);
-  write_frame_header(g.get(), rf.header);
-  h5::write_attribute(g.get(), "particle_count", static_cast<std::uint64_t>(f.particle_count));
-
   std::vector<double> particles;
   particles.reserve(3 * f.particles.size());
   for (const Particle& p : f.particles) particles.insert(particles.end(), {p.x, p.y, p.r});
@@ -116,47 +123,83 @@ void RunFileWriter::append(const RunFrame& rf) {
     wall_particles.push_back(w.particle);
     wall_forces.insert(wall_forces.end(), {w.fn, w.ft});
   }
-  h5::write_array(g.get(), "particles", particles, f.particles.size(), 3);
-  h5::write_array(g.get(), "contact_pairs", pairs, f.contacts.size(), 2);
-  h5::write_array(g.get(), "contact_forces", forces, f.contacts.size(), 2);
-  h5::write_array(g.get(), "wall_contact_particles", wall_particles, wall_particles.size(), 0);
-  h5::write_array(g.get(), "wall_contact_forces", wall_forces, wall_particles.size(), 2);
-  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush after " + name);
+  const hid_t file = file_.get();
+  const auto rows = [&](const char* name) { return static_cast<std::uint64_t>(h5::row_count(file, name, "run file")); };
+  const std::array<std::uint64_t, kOffsets> offsets{rows("particles"),
+                                                    rows("particles") + f.particles.size(),
+                                                    rows("contact_pairs"),
+                                                    rows("contact_pairs") + f.contacts.size(),
+                                                    rows("wall_contact_particles"),
+                                                    rows("wall_contact_particles") + rf.wall_contacts.size()};
+  // The bulk first, the frame's own row next, its index last: a reader trusts a frame only once
+  // "frame" covers it (a killed writer may leave longer datasets behind).
+  h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.data(), f.particles.size(), 3);
+  h5::append_rows(set("contact_pairs"), H5T_NATIVE_UINT32, pairs.data(), f.contacts.size(), 2);
+  h5::append_rows(set("contact_forces"), H5T_NATIVE_DOUBLE, forces.data(), f.contacts.size(), 2);
+  h5::append_rows(set("wall_contact_particles"), H5T_NATIVE_UINT32, wall_particles.data(), wall_particles.size(), 0);
+  h5::append_rows(set("wall_contact_forces"), H5T_NATIVE_DOUBLE, wall_forces.data(), wall_particles.size(), 2);
+  const std::uint64_t particle_count = f.particle_count;
+  h5::append_rows(set("step"), H5T_NATIVE_UINT64, &rf.header.step, 1, 0);
+  h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &rf.header.time, 1, 0);
+  h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &rf.header.rho, 1, 0);
+  h5::append_rows(set("z"), H5T_NATIVE_DOUBLE, &rf.header.z, 1, 0);
+  h5::append_rows(set("particle_count"), H5T_NATIVE_UINT64, &particle_count, 1, 0);
+  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
+  check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
+  h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &rf.header.index, 1, 0);
+  check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   ++frames_;
 }
 
 RunFileContents read_run_file(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
-  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + file + " (not an HDF5 file?)");
+  if (!std::filesystem::exists(path)) throw h5::Error(file + ": no such file");
+  const h5::PropertyList fapl = latest_format();
+  // SWMR read opens a file whose writer is still running, or was killed.
+  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
+             "open " + file + " (not an HDF5 run file?)");
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   const std::string schema = h5::read_string(root.get(), "schema", file);
   if (schema != kRunFileSchema) throw h5::Error(file + ": schema '" + schema + "', expected '" + kRunFileSchema + "'");
   RunFileContents out;
   out.info = read_run_info(root.get(), file);
 
-  h5::Group frames(H5Gopen2(f.get(), "/frames", H5P_DEFAULT), file + ": open /frames");
-  for (const std::string& name :
-       h5::member_names(frames.get(), file + ": /frames")) {  // zero-padded: name order is frame order
-    const std::string where = file + ": /frames/" + name;
-    h5::Group g(H5Gopen2(frames.get(), name.c_str(), H5P_DEFAULT), where);
+  const hid_t g = f.get();
+  const auto frame = h5::read_uint32s(g, "frame", 0, file);
+  const auto step = h5::read_uint64s(g, "step", 0, file);
+  const auto time = h5::read_doubles(g, "time", 0, file);
+  const auto rho = h5::read_doubles(g, "rho", 0, file);
+  const auto z = h5::read_doubles(g, "z", 0, file);
+  const auto particle_count = h5::read_uint64s(g, "particle_count", 0, file);
+  const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
+  const auto particles = h5::read_doubles(g, "particles", 3, file);
+  const auto pairs = h5::read_uint32s(g, "contact_pairs", 2, file);
+  const auto forces = h5::read_doubles(g, "contact_forces", 2, file);
+  const auto wall_particles = h5::read_uint32s(g, "wall_contact_particles", 0, file);
+  const auto wall_forces = h5::read_doubles(g, "wall_contact_forces", 2, file);
+  // Committed frames: those every column covers.
+  std::size_t n = frame.size();
+  for (const std::size_t len :
+       {step.size(), time.size(), rho.size(), z.size(), particle_count.size(), offsets.size() / kOffsets})
+    n = std::min(n, len);
+  const std::array<std::size_t, kOffsets / 2> available{particles.size() / 3, std::min(pairs.size(), forces.size()) / 2,
+                                                        std::min(wall_particles.size(), wall_forces.size() / 2)};
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint64_t* o = &offsets[k * kOffsets];
+    const std::string where = file + ": frame " + std::to_string(frame[k]);
+    for (std::size_t b = 0; b < kOffsets / 2; ++b)
+      if (o[2 * b] > o[2 * b + 1] || o[2 * b + 1] > available[b]) throw h5::Error(where + ": offsets out of range");
     RunFrame rf;
-    rf.header = read_frame_header(g.get(), out.info.run_id, where);
-    rf.frame.label = frame_label(out.info.run_id, rf.header.index);
-    rf.frame.particle_count = h5::read_uint64(g.get(), "particle_count", where);
-    const auto particles = h5::read_doubles(g.get(), "particles", 3, where);
-    const auto pairs = h5::read_uint32s(g.get(), "contact_pairs", 2, where);
-    const auto forces = h5::read_doubles(g.get(), "contact_forces", 2, where);
-    const auto wall_particles = h5::read_uint32s(g.get(), "wall_contact_particles", 0, where);
-    const auto wall_forces = h5::read_doubles(g.get(), "wall_contact_forces", 2, where);
-    if (pairs.size() != forces.size() || wall_forces.size() != 2 * wall_particles.size())
-      throw h5::Error(where + ": contact datasets disagree in length");
-    for (std::size_t k = 0; k < particles.size(); k += 3)
-      rf.frame.particles.push_back({particles[k], particles[k + 1], particles[k + 2]});
-    for (std::size_t k = 0; k < pairs.size(); k += 2)
-      rf.frame.contacts.push_back({pairs[k], pairs[k + 1], forces[k], forces[k + 1]});
-    for (std::size_t w = 0; w < wall_particles.size(); ++w)
-      rf.wall_contacts.push_back({wall_particles[w], wall_forces[2 * w], wall_forces[2 * w + 1]});
+    rf.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
+    rf.frame.label = frame_label(out.info.run_id, frame[k]);
+    rf.frame.particle_count = particle_count[k];
+    for (std::uint64_t r = o[0]; r < o[1]; ++r)
+      rf.frame.particles.push_back({particles[3 * r], particles[3 * r + 1], particles[3 * r + 2]});
+    for (std::uint64_t r = o[2]; r < o[3]; ++r)
+      rf.frame.contacts.push_back({pairs[2 * r], pairs[2 * r + 1], forces[2 * r], forces[2 * r + 1]});
+    for (std::uint64_t r = o[4]; r < o[5]; ++r)
+      rf.wall_contacts.push_back({wall_particles[r], wall_forces[2 * r], wall_forces[2 * r + 1]});
     out.frames.push_back(std::move(rf));
   }
   return out;

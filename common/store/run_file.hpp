@@ -1,8 +1,12 @@
-// The HDF5 run file: a run's parameters and every frame, appended as the run goes and flushed
-// after each frame so that a killed writer leaves a readable file. Schema: proto/run_file.md.
+// The HDF5 run file that fnet-simd --out writes: a run's parameters (root attributes) and every
+// frame, appended to flat extendible datasets in SWMR mode, so that the file can be read
+// (read_run_file, or h5py with swmr=True) while it is written, and a killed writer leaves every
+// frame committed before the kill. Schema: proto/run_file.md.
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "common/analysis/run_frame.hpp"
@@ -10,14 +14,14 @@
 
 namespace fnet {
 
-inline constexpr const char* kRunFileSchema = "fnet-run-1";
+inline constexpr const char* kRunFileSchema = "fnet-run-2";
 
 class RunFileWriter {
  public:
   // Creates `path` (replacing any file there) and records the run's parameters.
   RunFileWriter(const std::filesystem::path& path, const RunInfo& info);
-  // Reopens a file written earlier to append to it (resuming a run): frames with index >= `keep`
-  // are removed first, so a resumed run can rewrite them.
+  // Continues a file written earlier (resuming a run): its frames with index < `keep` are copied
+  // into a fresh file that replaces it, so a resumed run can write the others again.
   static RunFileWriter reopen(const std::filesystem::path& path, std::uint32_t keep);
 
   void append(const RunFrame& frame);
@@ -25,22 +29,24 @@ class RunFileWriter {
 
  private:
   RunFileWriter() = default;
+  void create(const std::filesystem::path& path, const RunInfo& info);
+  hid_t set(const char* name) const;
   h5::File file_;
+  std::map<std::string, h5::Dataset> sets_;  // declared after file_: closed before it
   std::size_t frames_ = 0;
 };
 
 struct RunFileContents {
   RunInfo info;
-  std::vector<RunFrame> frames;  // in frame order
+  std::vector<RunFrame> frames;  // the committed frames, in the order written
 };
 
-// Reads a whole run file; throws h5::Error naming the file and what is missing or malformed.
+// Reads a whole run file, also one still being written; throws h5::Error naming the file and
+// what is missing or malformed.
 RunFileContents read_run_file(const std::filesystem::path& path);
 
-// Shared with the analysis store, which records the same run parameters and frame headers.
+// The run's parameters as root attributes.
 void write_run_info(hid_t root, const RunInfo& info);
 RunInfo read_run_info(hid_t root, const std::string& where);
-void write_frame_header(hid_t group, const FrameHeader& header);
-FrameHeader read_frame_header(hid_t group, const std::string& run_id, const std::string& where);
 
 }  // namespace fnet

@@ -16,6 +16,7 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/store/analysis_store.hpp"
 #include "server/sim/checkpoint.hpp"
 #include "server/sim/csv_export.hpp"
 #include "server/sim/lammps_data.hpp"
@@ -45,8 +46,10 @@ std::string duration(double seconds) {
 
 void print_progress(const Progress& p) {
   if (p.phase == Phase::relax) {
-    std::fprintf(stderr, "fnet-simd: relaxing  step %lld  KE/grain %.3g  rho %.4f  Z %.3f  %.0f steps/s\n",
-                 static_cast<long long>(p.step), p.kinetic_energy, p.rho, p.z, p.steps_per_second);
+    std::fprintf(stderr,
+                 "fnet-simd: relaxing  step %lld  translational KE/grain %.3g (target %.3g)  rho %.4f  Z %.3f  %.0f "
+                 "steps/s\n",
+                 static_cast<long long>(p.step), p.kinetic_energy, p.relax_target, p.rho, p.z, p.steps_per_second);
   } else {
     std::fprintf(stderr, "fnet-simd: %s  rho %.4f  Z %.3f  frames %zu/%zu  step %lld/%lld  %.0f steps/s  ETA %s\n",
                  p.phase == Phase::done ? "done" : "compressing", p.rho, p.z, p.frames_done, p.frames,
@@ -59,8 +62,10 @@ constexpr const char* kUsage =
     "usage: fnet-simd [options]\n"
     "\n"
     "Runs the compression of Kramár et al. (2014): 2D polydisperse frictional disks in a box of rough\n"
-    "walls, relaxed from a square lattice with random velocities, then compressed by walls moving\n"
-    "inward at v_c until rho = rho_final, with frames at fixed time intervals over the compression.\n"
+    "walls (sized so that the grains fill --rho-initial of it), relaxed from a square lattice with\n"
+    "random velocities until the grains are at rest (velocities damped during the relaxation only),\n"
+    "then compressed by walls moving inward at v_c until rho = rho_final, with frames at fixed time\n"
+    "intervals over the compression.\n"
     "Units: lengths in d_ave, masses in the mean grain mass, speeds in d_ave/tau_c, times in tau_c\n"
     "(k_n in m g/d_ave as in the paper). Parameters: defaults, then --config, then flags.\n"
     "\n"
@@ -79,38 +84,30 @@ constexpr const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) try {
-  Params defaults;
+  const Params defaults;
   po::options_description options(kUsage);
-  std::string config, export_dir, checkpoint_path, run_id, integrator, lammps_data, out_file;
+  std::string config, export_dir, checkpoint_path, run_id, lammps_data, out_file;
   double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
   int domain = 0;
   unsigned threads = 1;
   options.add_options()("help,h", "show this help")("config", po::value(&config),
-                                                    "JSON object of parameters (keys: the names in --show-params)")(
-      "particles", po::value<std::size_t>(), "number of grains N (default 2000)")(
-      "polydispersity", po::value<double>(), "r_p: diameters uniform in [1-r_p/2, 1+r_p/2] (default 0.4)")(
-      "mu", po::value<double>(), "Coulomb friction coefficient mu_s (default 0.5)")(
-      "kn", po::value<double>(), "normal spring constant k_n, m g/d (default 4000)")(
-      "en", po::value<double>(), "normal restitution of two mean grains (default 0.5)")(
-      "kt-ratio", po::value<double>(), "k_t / k_n (default 0.8)")("compression-speed", po::value<double>(),
-                                                                  "wall speed v_c, d/tau_c (default 2.5e-5)")(
-      "dt-divisor", po::value<double>(), "time step = tau_c / this (default 50)")(
-      "rho-final", po::value<double>(), "packing fraction that ends the compression (default 0.90)")(
-      "frames", po::value<std::size_t>(), "frames over the compression, first and last included (default 100)")(
-      "seed", po::value<std::uint64_t>(), "random seed: diameters and initial velocities (default 1)")(
-      "box", po::value<double>(), "initial side of the free interior, d (default 50)")(
-      "wall-diameter", po::value<double>(), "diameter of the wall particles, d (default 1)")(
-      "initial-speed", po::value<double>(), "initial speeds uniform in a disk of this radius, d/tau_c (default 0.1)")(
-      "relax-energy", po::value<double>(),
-      "relaxation ends below this kinetic energy per grain, m d^2/tau_c^2 (default 1e-7)")(
-      "relax-max-time", po::value<double>(), "longest relaxation, tau_c (default 2e5)")(
-      "skin", po::value<double>(), "Verlet-list skin, d (default 0.15)")("integrator", po::value(&integrator),
-                                                                         "gear (the paper's, default) or verlet")(
-      "threads", po::value(&threads)->default_value(1),
-      "threads for the time steps (forces and the Gear step); the results are the same bits for any count")(
-      "run-id", po::value(&run_id), "run identifier carried by every frame (default fnet-simd-seed<S>)")(
-      "export-csv", po::value(&export_dir), "write frames as CSV files into this directory")(
-      "out", po::value(&out_file), "write the run (parameters and every frame) to this HDF5 file (proto/run_file.md)")(
+                                                    "JSON object of parameters (keys: the names in --show-params)");
+  // The physics flags come from the parameter table; their values are parsed by it (a count
+  // given as "-5" is an error there, not a wrapped-around integer).
+  std::vector<std::string> flags;
+  for (const ParamField& f : param_fields()) {
+    flags.push_back(flag_name(f).substr(2));
+    options.add_options()(flags.back().c_str(), po::value<std::string>(),
+                          (std::string(f.help) + " (default " + format_value(defaults, f) + ")").c_str());
+  }
+  options.add_options()("threads", po::value(&threads)->default_value(1),
+                        "threads for the time steps (forces and the Gear step); the results are the same bits for any "
+                        "count")("run-id", po::value(&run_id),
+                                 "run identifier carried by every frame, [A-Za-z0-9._-]{1,64} (default "
+                                 "fnet-simd-seed<S>)")("export-csv", po::value(&export_dir),
+                                                       "write frames as CSV files into this directory")(
+      "out", po::value(&out_file),
+      "write the run (parameters and every frame) to this HDF5 file, readable while it is written (proto/run_file.md)")(
       "no-dds", "do not publish frames over DDS")("domain", po::value(&domain)->default_value(0),
                                                   "DDS domain id (configure Cyclone DDS with CYCLONEDDS_URI)")(
       "ack-timeout", po::value(&ack_timeout)->default_value(60),
@@ -134,75 +131,70 @@ int main(int argc, char** argv) try {
   Params p = defaults;
   if (!config.empty()) {
     std::ifstream in(config);
-    if (!in) throw std::runtime_error(config + ": cannot open config file");
-    apply_json(p, nlohmann::json::parse(in));
+    if (!in) throw std::invalid_argument(config + ": cannot open config file");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(config + ": not JSON (" + e.what() + ")");
+    }
+    apply_json(p, j);
   }
-  const char* physics_flags[] = {
-      "particles",    "polydispersity", "mu",     "kn",         "en",    "kt-ratio",      "compression-speed",
-      "dt-divisor",   "rho-final",      "frames", "seed",       "box",   "wall-diameter", "initial-speed",
-      "relax-energy", "relax-max-time", "skin",   "integrator", "config"};
-  if (vm.count("particles")) p.particles = vm["particles"].as<std::size_t>();
-  if (vm.count("polydispersity")) p.polydispersity = vm["polydispersity"].as<double>();
-  if (vm.count("mu")) p.mu = vm["mu"].as<double>();
-  if (vm.count("kn")) p.kn = vm["kn"].as<double>();
-  if (vm.count("en")) p.en = vm["en"].as<double>();
-  if (vm.count("kt-ratio")) p.kt_ratio = vm["kt-ratio"].as<double>();
-  if (vm.count("compression-speed")) p.compression_speed = vm["compression-speed"].as<double>();
-  if (vm.count("dt-divisor")) p.dt_divisor = vm["dt-divisor"].as<double>();
-  if (vm.count("rho-final")) p.rho_final = vm["rho-final"].as<double>();
-  if (vm.count("frames")) p.frames = vm["frames"].as<std::size_t>();
-  if (vm.count("seed")) p.seed = vm["seed"].as<std::uint64_t>();
-  if (vm.count("box")) p.box = vm["box"].as<double>();
-  if (vm.count("wall-diameter")) p.wall_diameter = vm["wall-diameter"].as<double>();
-  if (vm.count("initial-speed")) p.initial_speed = vm["initial-speed"].as<double>();
-  if (vm.count("relax-energy")) p.relax_energy = vm["relax-energy"].as<double>();
-  if (vm.count("relax-max-time")) p.relax_max_time = vm["relax-max-time"].as<double>();
-  if (vm.count("skin")) p.skin = vm["skin"].as<double>();
-  if (!integrator.empty()) p.integrator = parse_integrator(integrator);
+  for (const ParamField& f : param_fields()) {
+    const std::string flag = flag_name(f).substr(2);
+    if (vm.count(flag)) set_from_text(p, f, vm[flag].as<std::string>());
+  }
   validate(p);
+  if (vm.count("run-id")) {
+    if (const std::string problem = fnet::run_id_problem(run_id); !problem.empty())
+      throw po::error("--run-id: " + problem);
+  }
+  if (threads < 1 || threads > 256) throw po::error("--threads must be between 1 and 256");
+  const bool resume = vm.count("resume") > 0;
+  // The start is built before anything is written: it checks what needs the grains (the box
+  // against the lattice, rho_final against the start's packing fraction).
+  Simulation sim;
+  if (!resume) sim = make_lattice(p);
 
   if (vm.count("show-params")) {
-    const Constants c = derive(p);
-    nlohmann::json j = {{"params", to_json(p)},
+    const Params& shown = resume ? p : sim.params;
+    const Constants c = derive(shown);
+    nlohmann::json j = {{"params", to_json(shown)},
                         {"derived",
                          {{"tau_c", c.tau_c},
                           {"gamma_n", c.gamma_n},
                           {"dt", c.dt},
                           {"kt", c.kt},
                           {"wall_speed_internal", c.wall_speed}}}};
+    if (!resume) j["derived"]["rho_initial"] = packing_fraction(sim);  // of the start the box makes
     std::cout << j.dump(2) << "\n";
     return 0;
   }
 
-  const bool resume = vm.count("resume") > 0;
   if (checkpoint_path.empty() && !export_dir.empty())
     checkpoint_path = (fs::path(export_dir) / "checkpoint.fnetsim").string();
   if (resume) {
     if (checkpoint_path.empty()) throw po::error("--resume needs --checkpoint FILE or --export-csv DIR");
-    for (const char* flag : physics_flags)
+    flags.push_back("config");
+    for (const std::string& flag : flags)
       if (vm.count(flag))
-        throw po::error(std::string("--") + flag +
-                        " cannot change a resumed run (its parameters come from the checkpoint)");
+        throw po::error("--" + flag + " cannot change a resumed run (its parameters come from the checkpoint)");
   }
   const bool publish = !vm.count("no-dds");
   if (!publish && export_dir.empty() && out_file.empty())
     std::fprintf(stderr,
                  "fnet-simd: note: --no-dds and no --export-csv or --out: frames are computed but written nowhere\n");
 
-  Simulation sim;
   if (resume) {
     Restored r = load_checkpoint(checkpoint_path);
     sim = std::move(r.simulation);
     if (run_id.empty()) run_id = r.run_id;
     std::fprintf(stderr, "fnet-simd: resumed %s at step %lld (%zu of %zu frames done)\n", run_id.c_str(),
                  static_cast<long long>(sim.step), sim.next_frame, sim.params.frames);
-  } else {
-    sim = make_lattice(p);
   }
   if (run_id.empty()) run_id = "fnet-simd-seed" + std::to_string(sim.params.seed);
   if (!lammps_data.empty()) write_lammps_data(sim, lammps_data);
 
-  if (threads < 1 || threads > 256) throw std::runtime_error("--threads must be between 1 and 256");
   Workers workers(threads);
   RunOptions o;
   o.run_id = run_id;
@@ -214,14 +206,32 @@ int main(int argc, char** argv) try {
   if (!out_file.empty()) run_file.emplace(out_file, info, resume, first_frame);
   std::optional<DdsSink> dds;
   if (publish) dds.emplace(static_cast<dds_domainid_t>(domain), info);
+  // Frames only DDS carries are lost unless a subscriber takes them before fnet-simd exits.
+  const bool dds_only = dds && export_dir.empty() && !run_file;
   if (!export_dir.empty() || run_file || dds)
     o.sink = [&, dir = fs::path(export_dir)](const FrameSnapshot& f) {
       if (!dir.empty()) write_frame_csv(dir, f);
       if (!run_file && !dds) return;
       const fnet::RunFrame frame = run_frame(f);  // once for both outputs
       if (run_file) (*run_file)(frame);
-      if (dds) (*dds)(frame);
+      if (dds) {
+        (*dds)(frame);
+        if (dds_only && f.index == first_frame && !dds->subscriber_now())
+          std::fprintf(stderr,
+                       "fnet-simd: warning: no DDS subscriber matched and no --out or --export-csv: frames are kept "
+                       "for late subscribers only until fnet-simd exits (--linger)\n");
+      }
     };
+  o.relaxed = [](const Relaxation& r) {  // once per run, also with --quiet
+    if (r.capped)
+      std::fprintf(stderr,
+                   "fnet-simd: warning: relaxation stopped by --relax-max-time after %lld steps, translational "
+                   "kinetic energy per grain %.3g above the target %.3g: compressing a start that is not at rest\n",
+                   static_cast<long long>(r.steps), r.energy, r.target);
+    else
+      std::fprintf(stderr, "fnet-simd: relaxed in %lld steps: translational kinetic energy per grain %.3g < %.3g\n",
+                   static_cast<long long>(r.steps), r.energy, r.target);
+  };
   if (!checkpoint_path.empty()) {
     o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path); };
     o.checkpoint_seconds = checkpoint_interval;
@@ -245,6 +255,10 @@ int main(int argc, char** argv) try {
   if (dds) {
     if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");
     dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
+    if (dds_only && !dds->reached_a_subscriber())
+      std::fprintf(stderr,
+                   "fnet-simd: warning: no DDS subscriber matched during the run and there was no --out or "
+                   "--export-csv: its frames were lost\n");
   }
   if (!finished) {
     if (o.checkpoint) {
@@ -259,6 +273,9 @@ int main(int argc, char** argv) try {
   return 0;
 } catch (const po::error& e) {
   std::cerr << "fnet-simd: " << e.what() << " (see --help)\n";
+  return 2;
+} catch (const std::invalid_argument& e) {  // a bad parameter value or config file
+  std::cerr << "fnet-simd: " << e.what() << "\n";
   return 2;
 } catch (const std::exception& e) {
   std::cerr << "fnet-simd: " << e.what() << "\n";

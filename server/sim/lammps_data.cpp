@@ -13,8 +13,8 @@ void write_lammps_data(const Simulation& s, const std::filesystem::path& path) {
   std::fprintf(f, "fnet-simd state at step %lld (seed %llu)\n\n", static_cast<long long>(s.step),
                static_cast<unsigned long long>(s.params.seed));
   std::fprintf(f, "%zu atoms\n5 atom types\n\n", s.n + s.nw);
-  std::fprintf(f, "%.17g %.17g xlo xhi\n%.17g %.17g ylo yhi\n-0.5 0.5 zlo zhi\n\n", -margin, s.params.box + margin,
-               -margin, s.params.box + margin);
+  std::fprintf(f, "%.17g %.17g xlo xhi\n%.17g %.17g ylo yhi\n-0.5 0.5 zlo zhi\n\n", -margin,
+               s.params.box.value() + margin, -margin, s.params.box.value() + margin);
   std::fprintf(f, "Atoms # sphere\n\n");
   const double sphere = 4.0 / 3.0 * std::numbers::pi;
   for (std::size_t b = 0; b < s.n + s.nw; ++b) {

@@ -38,13 +38,19 @@ RunFrame run_frame(const FrameSnapshot& s) {
 
 DdsSink::DdsSink(dds_domainid_t domain, const RunInfo& info) : publisher_(domain) { publisher_.publish(info); }
 
-void DdsSink::operator()(const RunFrame& frame) { publisher_.publish(frame); }
+void DdsSink::operator()(const RunFrame& frame) {
+  publisher_.publish(frame);
+  reached_ = reached_ || subscriber_now();
+}
 
 void DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
   publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger_seconds);
-  while (std::chrono::steady_clock::now() < until && !should_stop())
+  while (std::chrono::steady_clock::now() < until && !should_stop()) {
+    reached_ = reached_ || subscriber_now();
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  reached_ = reached_ || subscriber_now();
 }
 
 RunFileSink::RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame)

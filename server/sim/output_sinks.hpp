@@ -28,9 +28,13 @@ class DdsSink {
   // serving late readers from the durability history for `linger` seconds.
   // Stops lingering early once should_stop() is true.
   void finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
+  // Whether any frame reader was matched at a frame's publication or during finish().
+  bool reached_a_subscriber() const { return reached_; }
+  bool subscriber_now() const { return publisher_.matched_frame_readers() > 0; }
 
  private:
   dds::FramePublisher publisher_;
+  bool reached_ = false;
 };
 
 // Appends every frame to the run file; on resume it reopens the file and drops frames from

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
+#include <variant>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -13,26 +16,51 @@ namespace fnet::sim {
 
 enum class Integrator { gear, verlet };
 
+// The defaults are the paper's; what each field means is in param_fields() (params.cpp).
 struct Params {
-  std::size_t particles = 2000;
-  double polydispersity = 0.4;        // r_p: diameters uniform in [1 - r_p/2, 1 + r_p/2]
-  double mu = 0.5;                    // Coulomb coefficient μ_s (grain–grain and grain–wall)
-  double kn = 4000;                   // normal spring, units m g / d
-  double en = 0.5;                    // normal restitution of two mean grains; fixes γ_n = γ_t
-  double kt_ratio = 0.8;              // k_t / k_n
-  double compression_speed = 2.5e-5;  // v_c, d / τ_c, each wall
-  double dt_divisor = 50;             // Δt = τ_c / dt_divisor
+  std::uint64_t particles = 2000;
+  double polydispersity = 0.4;
+  double mu = 0.5;
+  double kn = 4000;
+  double en = 0.5;
+  double kt_ratio = 0.8;
+  double compression_speed = 2.5e-5;
+  double dt_divisor = 50;
+  double rho_initial = 0.63;
   double rho_final = 0.90;
-  std::size_t frames = 100;  // frames over the compression, first at its start, last at rho_final
+  std::uint64_t frames = 100;
   std::uint64_t seed = 1;
-  double box = 50;              // initial side of the free interior, d
-  double wall_diameter = 1;     // monodisperse wall particles
-  double initial_speed = 0.1;   // initial grain velocities uniform in a disk of this radius, d / τ_c
-  double relax_energy = 1e-7;   // relaxation ends when kinetic energy per grain < this, m d² / τ_c²
-  double relax_max_time = 2e5;  // give up relaxing after this long (τ_c) and compress anyway
-  double skin = 0.15;           // Verlet-list skin, d
+  std::optional<double> box;  // unset: sized so that the grains fill rho_initial of it
+  double wall_diameter = 1;
+  double initial_speed = 0.1;
+  double relax_energy = 1e-12;
+  double relax_damping = 0.01;
+  double relax_max_time = 2e5;
+  double skin = 0.15;
   Integrator integrator = Integrator::gear;
 };
+
+// One entry per parameter: its JSON key (the flag is the key with '-' for '_'), where it lives,
+// what it means, and the rule a valid value obeys. The JSON codec (both ways), the command-line
+// flags, their help and validate() all walk this one table.
+struct ParamField {
+  using Member =
+      std::variant<double Params::*, std::uint64_t Params::*, std::optional<double> Params::*, Integrator Params::*>;
+  const char* name;
+  Member member;
+  const char* help;                  // units included; the default is appended from Params{}
+  bool (*ok)(double) = nullptr;      // null: any value of the member's type
+  const char* rule = "";             // what ok() demands, for messages
+  const char* unset_help = nullptr;  // for an optional member: what leaving it unset means
+};
+
+std::span<const ParamField> param_fields();
+std::string flag_name(const ParamField& field);  // "--kt-ratio"
+// A field's value as --help and messages show it ("2.5e-05", "gear").
+std::string format_value(const Params& p, const ParamField& field);
+// Sets a field from a flag's text; throws std::invalid_argument naming the flag unless the whole
+// text is a number of the field's kind (a non-negative integer for counts) obeying its rule.
+void set_from_text(Params& p, const ParamField& field, const std::string& text);
 
 // Constants the engine uses, in internal units (time unit √(d/g)).
 struct Constants {
@@ -46,7 +74,8 @@ struct Constants {
 
 Constants derive(const Params& p);
 
-// Throws std::invalid_argument naming the offending parameter.
+// Throws std::invalid_argument naming the offending parameter. Rules that need the grains
+// (the box against the lattice, rho_final against the start) are checked by make_lattice.
 void validate(const Params& p);
 
 const char* to_string(Integrator integrator);

@@ -23,7 +23,7 @@ void start_compression(Simulation& s) {
 
 std::int64_t compression_length(const Simulation& s) {
   const double side_final = std::sqrt(s.grain_area / s.params.rho_final);
-  const double travel = 0.5 * (s.params.box - side_final);
+  const double travel = 0.5 * (s.params.box.value() - side_final);
   if (travel <= 0) return 0;
   return static_cast<std::int64_t>(std::ceil(travel / (s.c.wall_speed * s.c.dt)));
 }
@@ -39,7 +39,8 @@ bool run(Simulation& s, const RunOptions& o) {
   std::int64_t steps_at_last_progress = s.step;
   std::int64_t taken = 0;
   const double tau2 = s.c.tau_c * s.c.tau_c;
-  const auto ke_per_grain = [&] { return kinetic_energy(s) / static_cast<double>(s.n) * tau2; };
+  const auto ke_per_grain = [&] { return translational_energy(s) / static_cast<double>(s.n) * tau2; };
+  const double damping = std::exp(-s.params.relax_damping / s.params.dt_divisor);  // per step of τ_c / divisor
 
   const auto emit_due_frames = [&] {
     while (s.phase == Phase::compress && s.next_frame < s.params.frames &&
@@ -68,6 +69,7 @@ bool run(Simulation& s, const RunOptions& o) {
     p.rho = packing_fraction(s);
     p.z = coordination(s);
     p.kinetic_energy = ke_per_grain();
+    p.relax_target = s.params.relax_energy;
     p.steps_per_second = static_cast<double>(s.step - steps_at_last_progress) / elapsed;
     if (s.phase == Phase::compress && p.steps_per_second > 0)
       p.eta_seconds = static_cast<double>(s.compress_steps - s.compress_step) / p.steps_per_second;
@@ -79,10 +81,17 @@ bool run(Simulation& s, const RunOptions& o) {
     if (o.max_steps >= 0 && taken >= o.max_steps) return false;
     step(s, o.workers);
     ++taken;
-    if (s.phase == Phase::relax && s.step % kRelaxCheck == 0) {
-      const bool cold = ke_per_grain() < s.params.relax_energy;
-      const bool too_long = static_cast<double>(s.step) / s.params.dt_divisor >= s.params.relax_max_time;
-      if (cold || too_long) start_compression(s);
+    if (s.phase == Phase::relax) {
+      if (damping != 1) damp_velocities(s, damping);
+      if (s.step % kRelaxCheck == 0) {
+        const double energy = ke_per_grain();
+        const bool cold = energy < s.params.relax_energy;
+        const bool too_long = static_cast<double>(s.step) / s.params.dt_divisor >= s.params.relax_max_time;
+        if (cold || too_long) {
+          if (o.relaxed) o.relaxed({s.step, energy, s.params.relax_energy, !cold});
+          start_compression(s);
+        }
+      }
     }
     emit_due_frames();
     if ((taken & 1023) == 0) {

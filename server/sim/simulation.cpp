@@ -1,8 +1,11 @@
 #include "server/sim/simulation.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "server/sim/contact_forces.hpp"
 #include "server/sim/integrator.hpp"
@@ -15,6 +18,7 @@ constexpr std::size_t kTeamPairsPerGrain = 2;
 
 Simulation make(const Params& p, std::span<const GrainInit> grains) {
   validate(p);
+  if (!p.box) throw std::invalid_argument("invalid parameter box: a hand-placed scene needs one");
   Simulation s;
   s.params = p;
   s.c = derive(p);
@@ -49,7 +53,7 @@ Simulation make(const Params& p, std::span<const GrainInit> grains) {
   }
   const double dw = p.wall_diameter;
   const double margin = dw + p.skin + 2.0;  // room for grains pressed into the wall rows
-  setup_grid(s.list, -margin, p.box + margin, std::max(2 * r_max, dw), p.skin);
+  setup_grid(s.list, -margin, *p.box + margin, std::max(2 * r_max, dw), p.skin);
   place_walls(s);
   rebuild(s.list, s.x[0], s.y[0], s.radius, s.inv_mass, s.n, wall_offset(s));
 
@@ -74,20 +78,39 @@ Simulation make_lattice(const Params& p) {
   const Constants c = derive(p);
   Rng rng(p.seed);
   const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(p.particles))));
-  const double a = p.box / static_cast<double>(side);
   const double v0 = p.initial_speed / c.tau_c;  // d/τ_c to internal units
   std::vector<GrainInit> grains(p.particles);
-  for (std::size_t i = 0; i < p.particles; ++i) {
-    GrainInit& g = grains[i];
-    g.x = (static_cast<double>(i % side) + 0.5) * a;
-    g.y = (static_cast<double>(i / side) + 0.5) * a;
+  double area = 0;
+  for (GrainInit& g : grains) {
     g.r = 0.5 * (1 + p.polydispersity * (rng.uniform() - 0.5));
     const double angle = 2 * std::numbers::pi * rng.uniform();
     const double speed = v0 * std::sqrt(rng.uniform());  // uniform in a disk of radius v0
     g.vx = speed * std::cos(angle);
     g.vy = speed * std::sin(angle);
+    area += std::numbers::pi * g.r * g.r;
   }
-  return make(p, grains);
+  // The box holds the grains drawn at rho_initial, unless it is given.
+  Params q = p;
+  if (!q.box) q.box = std::sqrt(area / q.rho_initial);
+  const double rho0 = area / (*q.box * *q.box);
+  if (p.box) q.rho_initial = rho0;  // what the given box makes of it, so that the recorded parameters agree
+  const double a = *q.box / static_cast<double>(side);
+  const auto text = [](double v) {
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 6).ptr);
+  };
+  if (a < 1.0)
+    throw std::invalid_argument("invalid parameter box (--box, --rho-initial): a side of " + text(*q.box) + " d puts " +
+                                std::to_string(p.particles) +
+                                " grains on a square lattice closer than d_ave (start at a lower density)");
+  if (q.rho_final <= rho0)
+    throw std::invalid_argument("invalid parameter rho_final (--rho-final): " + text(q.rho_final) +
+                                " is not above the start's packing fraction " + text(rho0));
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    grains[i].x = (static_cast<double>(i % side) + 0.5) * a;
+    grains[i].y = (static_cast<double>(i / side) + 0.5) * a;
+  }
+  return make(q, grains);
 }
 
 Simulation make_custom(const Params& p, std::span<const GrainInit> grains) {
@@ -116,6 +139,20 @@ void step(Simulation& s, Workers* team) {
     verlet_second_half(s);
   }
   ++s.step;
+}
+
+void damp_velocities(Simulation& s, double factor) {
+  for (std::size_t i = 0; i < s.n; ++i) {
+    s.x[1][i] *= factor;
+    s.y[1][i] *= factor;
+  }
+}
+
+double translational_energy(const Simulation& s) {
+  const double inv_dt2 = 1 / (s.c.dt * s.c.dt);
+  double e = 0;
+  for (std::size_t i = 0; i < s.n; ++i) e += 0.5 * (s.x[1][i] * s.x[1][i] + s.y[1][i] * s.y[1][i]) / s.inv_mass[i];
+  return e * inv_dt2;
 }
 
 double kinetic_energy(const Simulation& s) {

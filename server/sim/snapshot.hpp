@@ -1,4 +1,5 @@
-// A frame of a run as sinks (CSV export now; DDS publishing and HDF5 later) receive it.
+// A frame of a run as fnet-simd's sinks receive it: the CSV export reads it directly; DDS and the
+// HDF5 run file take the RunFrame that run_frame() (output_sinks.hpp) makes of it.
 #pragma once
 
 #include <cstdint>

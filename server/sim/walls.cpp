@@ -7,7 +7,7 @@
 namespace fnet::sim {
 
 void add_walls(Simulation& s) {
-  const double dw = s.params.wall_diameter, box = s.params.box;
+  const double dw = s.params.wall_diameter, box = s.params.box.value();
   const double ring = box + dw;  // side of the square through the wall particles' centres
   const auto per_side = static_cast<std::size_t>(std::ceil(ring / dw - 1e-9));
   const double spacing = ring / static_cast<double>(per_side);  // <= dw: no gap a grain passes
@@ -44,7 +44,7 @@ void add_walls(Simulation& s) {
 
 double wall_offset(const Simulation& s) { return static_cast<double>(s.compress_step) * s.c.dt * s.c.wall_speed; }
 
-double interior_side(const Simulation& s) { return s.params.box - 2 * wall_offset(s); }
+double interior_side(const Simulation& s) { return s.params.box.value() - 2 * wall_offset(s); }
 
 double packing_fraction(const Simulation& s) {
   const double side = interior_side(s);

@@ -3,8 +3,8 @@
 
 fnet-simd runs the protocol (relaxation, compression from rho 0.63 to 0.90) and writes its start as
 a LAMMPS data file; LAMMPS runs tests/server/sim/lammps/in.compress from it (gran/hooke/history, wall
-particles moved with fix move linear, same relaxation criterion). Prints steps/s and
-particle-steps/s of both (all steps, relaxation included: LAMMPS's "Loop time" lines, fnet-simd's
+particles moved with fix move linear, the same damped relaxation to the same translational-energy
+target). Prints steps/s and particle-steps/s of both (all steps, relaxation included: LAMMPS's "Loop time" lines, fnet-simd's
 summary line) and the ratio; then the projected wall time of the paper's full protocol
 (v_c = 2.5e-5: ~8.1 million compression steps) at fnet-simd's measured rate.
 
@@ -39,8 +39,6 @@ work = a.workdir or tempfile.mkdtemp(prefix="fnet-bench-sim-")
 os.makedirs(work, exist_ok=True)
 common = ["--particles", str(a.particles), "--mu", str(a.mu), "--compression-speed", str(a.compression_speed),
           "--seed", str(a.seed), "--frames", "101"]
-if a.particles != 2000:
-    common += ["--box", repr(50 * (a.particles / 2000) ** 0.5)]
 info = json.loads(subprocess.run([a.fnet_simd, *common, "--show-params"], capture_output=True, text=True, check=True).stdout)
 p, d = info["params"], info["derived"]
 data = os.path.join(work, "initial.data")
@@ -59,6 +57,7 @@ with open(os.path.join(work, "fnet", "index.csv")) as f:
     steps = int(f.read().strip().splitlines()[-1].split(",")[1])
 lvars = {"data": data, "mu": p["mu"], "kn": p["kn"], "kt": d["kt"], "gamma": d["gamma_n"], "dt": d["dt"],
          "vwall": d["wall_speed_internal"], "relax_ke": p["relax_energy"] / d["tau_c"] ** 2,
+         "relax_damp": d["tau_c"] / p["relax_damping"] if p["relax_damping"] > 0 else 1e300,
          "relax_max": int(p["relax_max_time"] * p["dt_divisor"]), "steps": steps, "every": max(1, steps // 100),
          "ngrains": a.particles, "out": os.path.join(work, "lammps_pairs.dump")}
 cmd = [a.lmp, "-in", os.path.join(here, "..", "..", "server", "sim", "lammps", "in.compress"), "-log", os.path.join(work, "log.lammps"),

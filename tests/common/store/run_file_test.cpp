@@ -7,8 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <string>
 #include <sys/wait.h>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -54,6 +57,28 @@ TEST(RunFile, RoundTripIncludingAnEmptyFrame) {
   for (std::uint32_t k = 0; k < 5; ++k) expect_bit_exact(frame("r1", k, k == 2 ? 0 : 50 * k + 10), got.frames[k]);
 }
 
+// Checks a run file with h5py as proto/run_file.md says to open it (SWMR), expecting `frames`
+// committed frames of frame("py", k, 40).
+int check_with_h5py(const fs::path& dir, const fs::path& file, std::uint32_t frames) {
+  const fs::path script = dir / "check.py";
+  std::ofstream(script) << "import h5py, sys, json\n"
+                           "f = h5py.File(sys.argv[1], 'r', libver='latest', swmr=True)\n"
+                           "assert f.attrs['schema'] == 'fnet-run-2', f.attrs['schema']\n"
+                           "assert f.attrs['run_id'] == 'py'\n"
+                           "assert json.loads(f.attrs['config_json'])['mu'] == 0.5\n"
+                           "n = int(sys.argv[2])\n"
+                           "assert list(f['frame'][:]) == list(range(n)), f['frame'][:]\n"
+                           "p0, p1, c0, c1, w0, w1 = f['offsets'][1]\n"
+                           "assert f['particles'][p0:p1].shape == (300, 3)\n"
+                           "assert f['contact_pairs'][c0:c1].shape == (40, 2) and c1 - c0 == 40\n"
+                           "assert abs(f['rho'][1] - 0.64) < 1e-15 and f['step'][1] == 100\n"
+                           "assert f['wall_contact_forces'][w0:w1].shape == (1, 2)\n"
+                           "print('ok')\n";
+  const std::string cmd =
+      std::string(FNET_ORACLE_PYTHON) + " " + script.string() + " " + file.string() + " " + std::to_string(frames);
+  return std::system(cmd.c_str());
+}
+
 TEST(RunFile, ReadableWithH5py) {
   testing::TempDir dir;
   const fs::path file = dir.path() / "run.h5";
@@ -61,21 +86,46 @@ TEST(RunFile, ReadableWithH5py) {
     RunFileWriter w(file, info("py"));
     for (std::uint32_t k = 0; k < 3; ++k) w.append(frame("py", k, 40));
   }
-  const fs::path script = dir.path() / "read.py";
-  std::ofstream(script) << "import h5py, sys, json\n"
-                           "f = h5py.File(sys.argv[1], 'r')\n"
-                           "assert f.attrs['schema'] == 'fnet-run-1', f.attrs['schema']\n"
-                           "assert f.attrs['run_id'] == 'py'\n"
-                           "assert json.loads(f.attrs['config_json'])['mu'] == 0.5\n"
-                           "names = sorted(f['frames'])\n"
-                           "assert names == ['000000', '000001', '000002'], names\n"
-                           "g = f['frames/000001']\n"
-                           "assert g['particles'].shape == (300, 3) and g['contact_pairs'].shape == (40, 2)\n"
-                           "assert abs(g.attrs['rho'] - 0.64) < 1e-15 and g.attrs['step'] == 100\n"
-                           "assert g['wall_contact_forces'].shape == (1, 2)\n"
-                           "print('ok')\n";
-  const std::string cmd = std::string(FNET_ORACLE_PYTHON) + " " + script.string() + " " + file.string();
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_EQ(check_with_h5py(dir.path(), file, 3), 0);
+}
+
+// h5py opens the file while the writer still has it open, and sees every frame appended so far.
+TEST(RunFile, ReadableWithH5pyWhileItIsWritten) {
+  testing::TempDir dir;
+  const fs::path file = dir.path() / "run.h5";
+  RunFileWriter w(file, info("py"));
+  for (std::uint32_t k = 0; k < 3; ++k) w.append(frame("py", k, 40));
+  EXPECT_EQ(check_with_h5py(dir.path(), file, 3), 0);
+  for (std::uint32_t k = 3; k < 5; ++k) w.append(frame("py", k, 40));
+  EXPECT_EQ(check_with_h5py(dir.path(), file, 5), 0);
+  const RunFileContents live = read_run_file(file);  // the library's reader too
+  ASSERT_EQ(live.frames.size(), 5u);
+  for (std::uint32_t k = 0; k < 5; ++k) expect_bit_exact(frame("py", k, 40), live.frames[k]);
+}
+
+// The example of proto/run_file.md, run as written on a file still being written.
+TEST(RunFile, DocumentedExampleRunsOnALiveFile) {
+  std::ifstream doc(FNET_RUN_FILE_DOC);
+  ASSERT_TRUE(doc) << FNET_RUN_FILE_DOC;
+  const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+  const std::size_t begin = text.find("```python\n");
+  ASSERT_NE(begin, std::string::npos) << "no python example in " << FNET_RUN_FILE_DOC;
+  const std::size_t end = text.find("```", begin + 10);
+  testing::TempDir dir;
+  const fs::path script = dir.path() / "example.py", out = dir.path() / "out.txt", file = dir.path() / "run.h5";
+  std::ofstream(script) << text.substr(begin + 10, end - begin - 10);
+  RunFileWriter w(file, info("doc"));
+  for (std::uint32_t k = 0; k < 4; ++k) w.append(frame("doc", k, 30));
+  const std::string cmd =
+      std::string(FNET_ORACLE_PYTHON) + " " + script.string() + " " + file.string() + " > " + out.string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream printed(out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(printed, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);  // the attributes, then one line per frame
+  EXPECT_EQ(lines[0], "fnet-run-2 doc 300");
+  EXPECT_EQ(lines[2].rfind("1 100 ", 0), 0u) << lines[2];
+  EXPECT_NE(lines[2].find("(300, 3) (30, 2) (30, 2) 1"), std::string::npos) << lines[2];
 }
 
 TEST(RunFile, ReopenDropsFramesFromTheResumePointOn) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """fnet-simd killed (SIGKILL, no chance to save) mid-run and resumed with --resume writes the same
-CSV files, byte for byte, as an uninterrupted run; --help mentions that DDS is not implemented."""
+CSV files, byte for byte, as an uninterrupted run; --help explains DDS publishing and the run file."""
 import filecmp
 import os
 import shutil

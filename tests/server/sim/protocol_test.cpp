@@ -98,6 +98,53 @@ TEST(Protocol, DeterministicForASeed) {
   EXPECT_NE(full_run(small(6)).back().frame.particles[0].x, full_run(small(5)).back().frame.particles[0].x);
 }
 
+// The relaxation ends when the grains are at rest (translational energy below the target, not
+// by the cap), and its damping stops there: two copies of the relaxed state with different
+// relax_damping compress to the same bits.
+TEST(Protocol, RelaxationEndsAtRestAndTheCompressionIsUndamped) {
+  Params p = small(4);
+  p.relax_energy = 1e-12;
+  Simulation s = make_lattice(p);
+  std::vector<Relaxation> ends;
+  RunOptions o;
+  o.relaxed = [&](const Relaxation& r) { ends.push_back(r); };
+  o.max_steps = kRelaxCheck;
+  while (s.phase == Phase::relax) ASSERT_FALSE(run(s, o));
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_FALSE(ends[0].capped);
+  EXPECT_EQ(ends[0].steps, s.step);
+  EXPECT_EQ(ends[0].target, 1e-12);
+  const double tau2 = s.c.tau_c * s.c.tau_c;
+  EXPECT_LT(translational_energy(s) / static_cast<double>(s.n) * tau2, 1e-12);
+  EXPECT_DOUBLE_EQ(ends[0].energy, translational_energy(s) / static_cast<double>(s.n) * tau2);
+
+  Simulation other = s;
+  other.params.relax_damping = 5;
+  std::vector<FrameSnapshot> a, b;
+  RunOptions to_end;
+  to_end.sink = [&](const FrameSnapshot& f) { a.push_back(f); };
+  ASSERT_TRUE(run(s, to_end));
+  to_end.sink = [&](const FrameSnapshot& f) { b.push_back(f); };
+  ASSERT_TRUE(run(other, to_end));
+  ASSERT_EQ(a.size(), p.frames - 1);  // frame 0 came out with the relaxation's last step
+  expect_identical(a, b);
+}
+
+// A relaxation that cannot reach its target is ended by relax_max_time, and says so.
+TEST(Protocol, RelaxationCappedByMaxTimeSaysSo) {
+  Params p = small(4);
+  p.relax_energy = 0;  // never reached
+  p.relax_max_time = 20;
+  Simulation s = make_lattice(p);
+  std::vector<Relaxation> ends;
+  RunOptions o;
+  o.relaxed = [&](const Relaxation& r) { ends.push_back(r); };
+  ASSERT_TRUE(run(s, o));
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_TRUE(ends[0].capped);
+  EXPECT_EQ(ends[0].steps, 20 * 50);
+}
+
 // The threaded step evaluates the pairs in parallel and lets every body sum its pairs in the
 // serial loop's order: any team size gives the serial run's frames bit for bit, also when a run
 // is resumed with another team size. 400 grains so that each thread has hundreds of pairs; the

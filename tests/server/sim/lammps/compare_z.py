@@ -3,9 +3,10 @@
 
 fnet-simd runs the paper's protocol and writes its initial state (lattice, diameters, masses,
 velocities, walls) as a LAMMPS data file; LAMMPS (in.compress beside this script) runs the same
-relaxation criterion and compression with gran/hooke/history from that file. Both give Z
-(2 x grain-grain contacts with F_n > 0 / N) at the same compression steps; the packing fraction
-where Z first reaches 3 (linear interpolation between frames) must agree within --tolerance.
+relaxation (grain velocities damped at the same rate until the same translational-energy target)
+and compression with gran/hooke/history from that file. Both give Z (2 x grain-grain contacts
+with F_n > 0 / N) at the same compression steps; the packing fraction where Z first reaches 3
+(linear interpolation between frames) must agree within --tolerance.
 Exit status 0 when it does, 1 when not, 2 on a failed run. Prints both series and the timings.
 """
 import argparse
@@ -15,6 +16,11 @@ import os
 import subprocess
 import sys
 import time
+
+
+def relax_damp(p, d):
+    """LAMMPS's damping time (fix langevin) for fnet-simd's relax_damping rate (1/tau_c); none for 0."""
+    return d["tau_c"] / p["relax_damping"] if p["relax_damping"] > 0 else 1e300
 
 
 def crossing(rho, z, level=3.0):
@@ -49,9 +55,6 @@ def main():
     os.makedirs(a.workdir, exist_ok=True)
     common = ["--particles", str(a.particles), "--mu", str(a.mu), "--compression-speed", str(a.compression_speed),
               "--seed", str(a.seed), "--frames", str(a.frames)]
-    if a.particles != 2000:  # same initial density 0.6325 as the paper's 2000 disks in a 50 x 50 box
-        box = 50 * math.sqrt(a.particles / 2000)
-        common += ["--box", repr(box)]
     res, _ = run([a.fnet_simd, *common, "--show-params"])
     info = json.loads(res.stdout)
     p, d = info["params"], info["derived"]
@@ -71,6 +74,7 @@ def main():
     tau2 = d["tau_c"] ** 2
     lvars = {"data": data, "mu": p["mu"], "kn": p["kn"], "kt": d["kt"], "gamma": d["gamma_n"], "dt": d["dt"],
              "vwall": d["wall_speed_internal"], "relax_ke": p["relax_energy"] / tau2,
+             "relax_damp": relax_damp(p, d),
              "relax_max": int(p["relax_max_time"] * p["dt_divisor"]), "steps": steps, "every": every,
              "ngrains": a.particles, "out": dump}
     cmd = [a.lmp, "-in", a.input, "-log", os.path.join(a.workdir, "log.lammps"), "-screen", "none"]
