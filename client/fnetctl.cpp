@@ -1,8 +1,10 @@
 // fnetctl: the command-line client of fnet-server.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -334,4 +336,13 @@ int run(std::vector<std::string> args) {
 }  // namespace
 }  // namespace fnet::client
 
-int main(int argc, char** argv) { return fnet::client::run(std::vector<std::string>(argv + 1, argv + argc)); }
+int main(int argc, char** argv) {
+  const int code = fnet::client::run(std::vector<std::string>(argv + 1, argv + argc));
+  // Output that could not be written (a full disk, a closed pipe) is a failure, not a success.
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    std::cerr << "fnetctl: cannot write the output: " << std::strerror(errno) << "\n";
+    return code == fnet::client::kOk ? fnet::client::kFailure : code;
+  }
+  return code;
+}

@@ -3,10 +3,12 @@
 // and `watch` waiting for a run, marking it complete and restoring the terminal.
 #include <signal.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <sys/wait.h>
 #include <thread>
 
 #include <gmock/gmock.h>
@@ -367,6 +369,17 @@ TEST_F(Fnetctl, HelpListsEveryDistanceOptionAndEveryExitCode) {
   const std::string listed = std::regex_replace(text.substr(at, text.find("\n- ", at) - at), std::regex("\\s+"), " ");
   for (const char* code : {"0 ok", "1 ", "2 bad usage", "3 server unreachable", "4 unknown run", "5 other server"})
     EXPECT_THAT(listed, HasSubstr(code)) << listed;
+}
+
+// Exit code 1: output fnetctl cannot write is a failure, not a silent success.
+TEST_F(Fnetctl, OutputThatCannotBeWrittenExitsOne) {
+  ASSERT_TRUE(fs::exists("/dev/full"));
+  const std::string command = std::string(FNETCTL) + " --help > /dev/full 2> " + (scratch() / "full.err").string();
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream err(scratch() / "full.err");
+  EXPECT_THAT(std::string(std::istreambuf_iterator<char>(err), {}), HasSubstr("cannot write"));
 }
 
 // The screen as the terminal shows it: what follows the last "enter the alternate screen".
