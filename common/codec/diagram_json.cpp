@@ -13,8 +13,8 @@ nlohmann::json to_json(const Diagram& diagram) {
 }
 
 nlohmann::json to_json(const FrameDiagrams& d) {
-  return {{"pd0", to_json(d.pd0)},
-          {"pd1", to_json(d.pd1)},
+  return {{diagram_key(0), to_json(d.pd0)},
+          {diagram_key(1), to_json(d.pd1)},
           {"vertices", d.vertices},
           {"edges", d.edges},
           {"triangles", d.triangles}};
@@ -37,6 +37,20 @@ Diagram diagram_from_json(const nlohmann::json& value) {
     out.push_back({birth, death});
   }
   return out;
+}
+
+std::string diagram_key(int dim) { return "pd" + std::to_string(dim); }
+
+Diagram document_diagram(const nlohmann::json& document, int dim) {
+  const std::string key = diagram_key(dim);
+  if (!document.is_object() || !document.contains(key))
+    throw std::invalid_argument("no \"" + key +
+                                "\" diagram (expected a diagram document {\"pd0\": [...], \"pd1\": [...]})");
+  try {
+    return diagram_from_json(document[key]);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(key + ": " + e.what());
+  }
 }
 
 }  // namespace fnet

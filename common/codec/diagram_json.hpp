@@ -1,5 +1,11 @@
-// JSON codecs for diagrams: [[birth, death], ...] and the object fnet-analyze diagram prints.
+// JSON codecs for diagrams, and the diagram document: one format for every tool. fnet-analyze
+// diagram and fnetctl diagram --format json write it, fnet-analyze distance reads it:
+//   {"pd0": [[birth, death], ...], "pd1": [...], "vertices": N, "edges": E, "triangles": T}
+// A writer may add where the diagrams came from ("run", "frame", "force", "rho", "z"); readers
+// ignore keys they do not need.
 #pragma once
+
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -8,10 +14,17 @@
 
 namespace fnet {
 
-nlohmann::json to_json(const Diagram& diagram);
-nlohmann::json to_json(const FrameDiagrams& diagrams);  // {"pd0", "pd1", "vertices", "edges", "triangles"}
+nlohmann::json to_json(const Diagram& diagram);         // [[birth, death], ...]
+nlohmann::json to_json(const FrameDiagrams& diagrams);  // the diagram document
 
 // Throws std::invalid_argument naming what is wrong (not an array of pairs, non-finite, birth < death).
 Diagram diagram_from_json(const nlohmann::json& value);
+
+// "pd0" or "pd1": the key of the diagram of dimension dim (0 or 1) in a document.
+std::string diagram_key(int dim);
+
+// The diagram of dimension dim of a document. Throws std::invalid_argument naming the key when
+// the document is not an object, lacks it, or holds no valid diagram under it.
+Diagram document_diagram(const nlohmann::json& document, int dim);
 
 }  // namespace fnet

@@ -22,14 +22,17 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     return cells;
   };
   const std::vector<std::string> header = split(line);
-  const auto column = [&](const std::string& name, bool required) -> int {
-    for (std::size_t k = 0; k < header.size(); ++k)
-      if (header[k] == name) return static_cast<int>(k);
-    if (required) throw CsvError(index.string() + ":1: header lacks column '" + name + "'");
+  // The first of `names` the header has; a required column names the first of them when absent.
+  const auto column = [&](std::initializer_list<const char*> names, bool required) -> int {
+    for (const char* name : names)
+      for (std::size_t k = 0; k < header.size(); ++k)
+        if (header[k] == name) return static_cast<int>(k);
+    if (required) throw CsvError(index.string() + ":1: header lacks column '" + *names.begin() + "'");
     return -1;
   };
-  const int c_frame = column("frame", true), c_step = column("step", true), c_time = column("time", false),
-            c_rho = column("rho", true), c_z = column("Z", true);
+  // fnet writes z; the LAMMPS reference data says Z.
+  const int c_frame = column({"frame"}, true), c_step = column({"step"}, true), c_time = column({"time"}, false),
+            c_rho = column({"rho"}, true), c_z = column({"z", "Z"}, true);
   std::vector<RunFrame> out;
   std::size_t line_no = 1;
   while (std::getline(in, line)) {

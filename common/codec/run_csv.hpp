@@ -1,5 +1,5 @@
 // A run exported as CSV (fnet-simd --export-csv, or the LAMMPS reference frames):
-//   DIR/index.csv                 frame,step[,time],rho,Z
+//   DIR/index.csv                 frame,step[,time],rho,z   (Z also read: the LAMMPS reference data)
 //   DIR/frame_NNNN_particles.csv  id,x,y,r
 //   DIR/frame_NNNN_contacts.csv   i,j,fn,ft
 #pragma once

@@ -1,11 +1,15 @@
 // The subcommands of fnet-analyze; each parses its own options and returns the exit code.
 #pragma once
 
+#include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <boost/program_options.hpp>
+
+#include "common/analysis/metric_vocabulary.hpp"
 
 namespace fnet::analyze {
 
@@ -14,6 +18,24 @@ namespace fnet::analyze {
 std::optional<boost::program_options::variables_map> parse_options(
     const boost::program_options::options_description& options, const std::vector<std::string>& args,
     const boost::program_options::positional_options_description* positional = nullptr);
+
+// Runs `parse`, one of the vocabulary's parsers (which throw std::invalid_argument), and rethrows
+// its error as a usage error naming `flag`.
+template <class Parse>
+auto named_option(const std::string& flag, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw boost::program_options::error(flag + ": " + e.what());
+  }
+}
+
+// --metric and --q by the shared vocabulary; the usage error names the flag at fault.
+MetricChoice metric_option(const std::string& name, std::optional<double> q);
+
+// Usage errors, before any work: "<what> <path>: no such file" (or directory).
+void require_file(const std::string& what, const std::filesystem::path& path);
+void require_directory(const std::string& what, const std::filesystem::path& path);
 
 int diagram_command(const std::vector<std::string>& args);
 int store_command(const std::vector<std::string>& args);

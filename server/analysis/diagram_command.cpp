@@ -21,7 +21,8 @@ int diagram_command(const std::vector<std::string>& args) {
   po::options_description options(
       "usage: fnet-analyze diagram --contacts C.csv [--particles P.csv] [--force normal|tangential]\n"
       "\n"
-      "Prints {\"pd0\": [[birth, death], ...], \"pd1\": [...], \"vertices\": N, \"edges\": E, \"triangles\": T}.\n"
+      "Prints the frame's diagram document {\"pd0\": [[birth, death], ...], \"pd1\": [...], \"vertices\": N,\n"
+      "\"edges\": E, \"triangles\": T}, which 'fnet-analyze distance' reads.\n"
       "Forces are normalized by the frame's mean over contacts with force > 0; the filtration is\n"
       "superlevel (strong forces first) on the flag complex of the contact graph. A point's death\n"
       "is -1 when the class never dies (rattlers give (0, -1)). Points are sorted by birth, then\n"
@@ -39,7 +40,9 @@ int diagram_command(const std::vector<std::string>& args) {
                                     "which force network: normal or tangential");
   if (!parse_options(options, args)) return 0;
 
-  const fnet::ForceKind kind = fnet::parse_force_kind(force);
+  const ForceKind kind = named_option("--force", [&] { return parse_force_kind(force); });
+  require_file("--contacts", contacts);
+  if (!particles.empty()) require_file("--particles", particles);
   fnet::Frame frame = fnet::read_frame_csv(
       contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
   fnet::validate(frame);

@@ -1,4 +1,4 @@
-// fnet-analyze distance: bottleneck or Wasserstein distance between two diagrams of fnet-analyze diagram.
+// fnet-analyze distance: bottleneck or Wasserstein distance between the diagrams of two diagram documents.
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -9,7 +9,7 @@
 
 #include <boost/program_options.hpp>
 
-#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/metric_vocabulary.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
 #include "common/distance/essential_convention.hpp"
@@ -30,12 +30,10 @@ Diagram read_diagram(const std::string& path, int dim) {
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": not JSON: " + e.what());
   }
-  const std::string key = dim == 0 ? "pd0" : "pd1";
-  if (!doc.is_object() || !doc.contains(key)) throw std::runtime_error(path + ": no \"" + key + "\" array");
   try {
-    return diagram_from_json(doc[key]);
+    return document_diagram(doc, dim);
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(path + " " + key + ": " + e.what());
+    throw std::runtime_error(path + ": " + e.what());
   }
 }
 
@@ -46,9 +44,11 @@ int distance_command(const std::vector<std::string>& args) {
       "usage: fnet-analyze distance A.json B.json --metric bottleneck|wasserstein1|wasserstein2|wasserstein\n"
       "                             [--q Q] [--dim 0|1] [--delta D] [--essential floor|sentinel|separate]\n"
       "\n"
-      "Distance between the diagrams of two files printed by 'fnet-analyze diagram'. L-infinity ground\n"
+      "Distance between the diagrams of two diagram documents ({\"pd0\": [...], \"pd1\": [...]}, as\n"
+      "'fnet-analyze diagram' and 'fnetctl diagram --format json' write them). L-infinity ground\n"
       "metric; a point may match the diagonal at (birth - death) / 2. Prints\n"
-      "  {\"value\": v, \"lower\": l, \"upper\": u, \"exact\": true|false, \"essential\": convention, \"seconds\": t}\n"
+      "  {\"value\": v, \"lower\": l, \"upper\": u, \"exact\": true|false, \"metric\", \"q\"?, \"dim\",\n"
+      "   \"essential\": convention, \"seconds\": t}\n"
       "With --delta 0 (default) the distance is exact and lower = upper = value. With --delta D > 0 the\n"
       "value is the cost of an actual matching and upper - lower <= D * lower (bottleneck: upper <=\n"
       "(1 + D) * lower); the Wasserstein distances answer exactly whatever D (lower = upper). Under\n"
@@ -59,7 +59,7 @@ int distance_command(const std::vector<std::string>& args) {
   std::string metric, essential = "floor";
   std::vector<std::string> files;
   double q = 0, delta = 0;
-  int dim = 1;
+  long long dim = 1;
   options.add_options()("help,h", "show this help")(
       "metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2, or wasserstein (with --q)")(
       "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
@@ -73,32 +73,21 @@ int distance_command(const std::vector<std::string>& args) {
   const auto vm = parse_options(options, args, &positional);
   if (!vm) return 0;
   if (files.size() != 2) throw po::error("two diagram files are required");
-  if (dim != 0 && dim != 1) throw po::error("--dim must be 0 or 1");
+  const MetricChoice choice = metric_option(metric, vm->count("q") ? std::optional(q) : std::nullopt);
+  const int d = named_option("--dim", [&] { return check_dim(dim); });
+  const EssentialConvention convention =
+      named_option("--essential", [&] { return parse_essential_convention(essential); });
   if (!std::isfinite(delta) || delta < 0) throw po::error("--delta must be a finite number >= 0");
-  if (metric == "wasserstein1") {
-    if (vm->count("q") && q != 1) throw po::error("--q contradicts --metric wasserstein1");
-    q = 1;
-  } else if (metric == "wasserstein2") {
-    if (vm->count("q") && q != 2) throw po::error("--q contradicts --metric wasserstein2");
-    q = 2;
-  } else if (metric == "wasserstein") {
-    if (!vm->count("q")) throw po::error("--metric wasserstein needs --q");
-    if (!std::isfinite(q) || q < 1) throw po::error("--q must be a finite number >= 1");
-  } else if (metric != "bottleneck") {
-    throw po::error("unknown --metric '" + metric + "' (bottleneck, wasserstein1, wasserstein2, wasserstein)");
-  } else if (vm->count("q")) {
-    throw po::error("--q applies to the Wasserstein metrics only");
-  }
-  const EssentialConvention convention = parse_essential_convention(essential);
+  for (const std::string& file : files) require_file("diagram file", file);
 
-  const Diagram a = read_diagram(files[0], dim), b = read_diagram(files[1], dim);
+  const Diagram a = read_diagram(files[0], d), b = read_diagram(files[1], d);
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult result = diagram_distance_q(a, b, metric == "bottleneck" ? 0 : q, convention, delta);
+  const DistanceResult result = choice_distance(a, b, choice, convention, delta);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json out = to_json(result);
-  out["metric"] = metric;
-  if (metric != "bottleneck") out["q"] = q;
-  out["dim"] = dim;
+  out["metric"] = choice.name;
+  if (choice.q) out["q"] = *choice.q;
+  out["dim"] = d;
   out["essential"] = std::string(to_string(convention));
   out["seconds"] = seconds;
   std::cout << out.dump() << "\n";

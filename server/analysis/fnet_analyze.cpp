@@ -1,4 +1,5 @@
 // fnet-analyze: the offline front end of fnet's analysis.
+#include <algorithm>
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -21,7 +22,10 @@ constexpr const char* kUsage =
     "  store     analyze a recorded run (run file or CSV folder) into a run store, as fnet-server does\n"
     "  publish   replay a recorded run onto DDS, as fnet-simd streams it\n"
     "\n"
-    "Run 'fnet-analyze <command> --help' for the options of a command.\n";
+    "Run 'fnet-analyze <command> --help' for the options of a command.\n"
+    "\n"
+    "exit codes: 0 ok, 1 the input could not be analyzed (malformed CSV or JSON, not an HDF5 run\n"
+    "            file, an invalid frame), 2 bad usage (unknown option, bad value, missing file)\n";
 
 }  // namespace
 
@@ -41,6 +45,25 @@ std::optional<boost::program_options::variables_map> parse_options(
   }
   po::notify(vm);
   return vm;
+}
+
+MetricChoice metric_option(const std::string& name, std::optional<double> q) {
+  const bool known = std::find(kMetricNames.begin(), kMetricNames.end(), name) != kMetricNames.end();
+  // A known name fails only for its exponent.
+  return named_option(known ? "--q" : "--metric", [&] { return parse_metric(name, q); });
+}
+
+void require_file(const std::string& what, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such file");
+  if (fs::is_directory(path))
+    throw boost::program_options::error(what + " " + path.string() + ": is a directory, not a file");
+}
+
+void require_directory(const std::string& what, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such directory");
+  if (!fs::is_directory(path)) throw boost::program_options::error(what + " " + path.string() + ": not a directory");
 }
 
 }  // namespace fnet::analyze

@@ -3,6 +3,7 @@
 #include "common/codec/run_csv.hpp"
 #include "common/store/analysis_store.hpp"
 #include "common/store/run_file.hpp"
+#include "server/analysis/commands.hpp"
 
 namespace fnet::analyze {
 
@@ -16,6 +17,13 @@ void RunSource::add_options(po::options_description& options) {
 
 std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
   if (run_file.empty() == csv_dir.empty()) throw po::error("give exactly one of --run-file and --csv-dir");
+  if (!run_file.empty()) require_file("--run-file", run_file);
+  if (!csv_dir.empty()) {
+    require_directory("--csv-dir", csv_dir);
+    if (run_id.empty()) throw po::error("--csv-dir needs --run-id");
+  }
+  if (!run_id.empty())
+    if (const std::string problem = run_id_problem(run_id); !problem.empty()) throw po::error("--run-id: " + problem);
   RunInfo info;
   std::vector<RunFrame> frames;
   if (!run_file.empty()) {
@@ -30,7 +38,6 @@ std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
       }
     }
   } else {
-    if (run_id.empty()) throw po::error("--csv-dir needs --run-id");
     frames = read_csv_run(csv_dir, run_id);  // labelled with run_id already
     info.run_id = run_id;
     info.frames = static_cast<std::uint32_t>(frames.size());

@@ -44,7 +44,7 @@ std::string frame_name(std::size_t index, const char* what) {
   return buf;
 }
 
-constexpr const char* kIndexHeader = "frame,step,time,rho,Z\n";
+constexpr const char* kIndexHeader = "frame,step,time,rho,z\n";
 
 }  // namespace
 

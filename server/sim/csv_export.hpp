@@ -1,5 +1,5 @@
 // CSV export in the format `fnet-analyze diagram` reads (common/frame_csv.hpp):
-//   DIR/index.csv                       frame,step,time,rho,Z   (time in τ_c since the compression began)
+//   DIR/index.csv                       frame,step,time,rho,z   (time in τ_c since the compression began)
 //   DIR/frame_NNNN_particles.csv        id,x,y,r
 //   DIR/frame_NNNN_contacts.csv         i,j,fn,ft     grain–grain, signed F_n, |F_t|
 //   DIR/frame_NNNN_wall_contacts.csv    grain,wall,side,fn,ft   (side 0 bottom, 1 right, 2 top, 3 left)

@@ -121,6 +121,26 @@ TEST(RunCsv, BadIndexRowIsQuotedWhole) {
               AllOf(HasSubstr(at(index, 2)), HasSubstr("'0,12,abc,0.5,4'")));
 }
 
+// Z is `z` in fnet-simd's index.csv and every fnet CSV; the LAMMPS reference data says `Z`: both read.
+TEST(RunCsv, IndexReadsZUnderEitherName) {
+  for (const char* name : {"z", "Z"}) {
+    TempDir dir;
+    dir.write("index.csv", std::string("frame,step,time,rho,") + name + "\n7,120,0.5,0.8125,3.0000000000000004\n");
+    dir.write("frame_0007_contacts.csv", "i,j,fn,ft\n0,1,1,0.5\n");
+    dir.write("frame_0007_particles.csv", "id,x,y,r\n0,0,0,0.5\n1,1,0,0.5\n");
+    const std::vector<RunFrame> frames = read_csv_run(dir.path(), "r");
+    ASSERT_EQ(frames.size(), 1u) << name;
+    EXPECT_EQ(frames[0].header.index, 7u);
+    EXPECT_EQ(frames[0].header.step, 120u);
+    EXPECT_EQ(frames[0].header.time, 0.5);
+    EXPECT_EQ(frames[0].header.rho, 0.8125);
+    EXPECT_EQ(frames[0].header.z, 3.0000000000000004) << name;
+  }
+  TempDir neither;
+  const auto index = neither.write("index.csv", "frame,step,rho\n0,0,0.5\n");
+  EXPECT_THAT(csv_error([&] { read_csv_run(neither.path(), "r"); }), AllOf(HasSubstr(at(index, 1)), HasSubstr("'z'")));
+}
+
 // A '+' may lead a number; a second sign after it does not make one.
 TEST(FrameCsv, PlusFollowedByMinusIsNotANumber) {
   TempDir dir;

@@ -233,7 +233,7 @@ TEST(Protocol, CsvExportIsWhatTheAnalysisReads) {
   std::ifstream index(dir / "index.csv");
   std::string line;
   std::getline(index, line);
-  EXPECT_EQ(line, "frame,step,time,rho,Z");
+  EXPECT_EQ(line, "frame,step,time,rho,z");
   std::size_t rows = 0;
   while (std::getline(index, line)) ++rows;
   EXPECT_EQ(rows, p.frames);

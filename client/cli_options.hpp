@@ -1,0 +1,44 @@
+// What fnetctl's commands share: exit codes, where the server is, and the checks that turn a
+// typed value into what it names (the vocabulary of common/analysis) or a usage error naming the
+// flag. Usage errors are boost::program_options::error; main() turns them into exit code 2.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "common/analysis/metric_vocabulary.hpp"
+#include "common/distance/essential_convention.hpp"
+#include "common/topology/force_network.hpp"
+
+namespace fnet::client {
+
+// Documented in --help and README.
+enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2, kUnreachable = 3, kUnknown = 4, kServerError = 5 };
+
+struct Endpoint {
+  std::string host = "127.0.0.1";
+  unsigned short port = 7707;
+};
+
+// The server's address: FNET_HOST / FNET_PORT from the environment, overridden by --host and
+// --port (also --host=H, --port=P) wherever they stand on the command line; those are removed
+// from `args`. Throws boost::program_options::error naming the flag or variable.
+Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port);
+
+// Parses a command's options; false after printing --help. `vm`, when given, receives the values.
+bool parse_command(const boost::program_options::options_description& options, const std::vector<std::string>& args,
+                   boost::program_options::variables_map* vm = nullptr);
+
+// Each throws boost::program_options::error naming the flag and the value.
+MetricChoice metric_option(const std::string& name, std::optional<double> q);
+int dim_option(long long dim);
+ForceKind force_option(const std::string& name);
+EssentialConvention essential_option(const std::string& name);
+std::uint32_t frame_option(const char* flag, long long value);
+void format_option(const std::string& format, std::initializer_list<const char*> allowed);
+
+}  // namespace fnet::client

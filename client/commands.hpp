@@ -1,0 +1,13 @@
+// fnetctl's commands that live in their own files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "client/cli_options.hpp"
+
+namespace fnet::client {
+
+int watch_command(const Endpoint& at, const std::vector<std::string>& args);
+
+}  // namespace fnet::client

@@ -1,0 +1,101 @@
+// fnet-analyze's exit codes and messages as users meet them: usage errors (a bad flag, value or
+// path) exit 2 naming what was wrong, before any work; input that cannot be analyzed exits 1.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fnet::testing {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+class AnalyzeCli : public ::testing::Test {
+ protected:
+  ProcessResult analyze(const std::vector<std::string>& args) { return run_process(FNET_ANALYZE, args, dir_.path()); }
+  std::filesystem::path write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
+  const std::filesystem::path& dir() const { return dir_.path(); }
+
+  // Expects exit code `code`, nothing on stdout, and returns stderr.
+  std::string fails_with(int code, const std::vector<std::string>& args) {
+    const ProcessResult r = analyze(args);
+    EXPECT_EQ(r.exit_code, code) << ::testing::PrintToString(args) << "\n" << r.err;
+    EXPECT_EQ(r.out, "");
+    return r.err;
+  }
+
+ private:
+  TempDir dir_;
+};
+
+TEST_F(AnalyzeCli, StoreFromAMissingRunFileSaysNoSuchFile) {
+  const std::string missing = (dir() / "nonexistent.h5").string();
+  const std::string err = fails_with(2, {"store", "--run-file", missing, "--data-dir", (dir() / "d").string()});
+  EXPECT_THAT(err,
+              AllOf(HasSubstr("--run-file"), HasSubstr(missing), HasSubstr("no such file"), Not(HasSubstr("HDF5"))));
+  EXPECT_FALSE(std::filesystem::exists(dir() / "d")) << "nothing is done before the input is checked";
+  EXPECT_THAT(fails_with(2, {"store", "--csv-dir", (dir() / "nowhere").string(), "--run-id", "r", "--data-dir",
+                             (dir() / "d").string()}),
+              AllOf(HasSubstr("--csv-dir"), HasSubstr("no such directory")));
+}
+
+TEST_F(AnalyzeCli, StoreFromAFileThatIsNotHdf5FailsWithOne) {
+  const auto text = write("notes.h5", "not HDF5\n");
+  EXPECT_THAT(fails_with(1, {"store", "--run-file", text.string(), "--data-dir", (dir() / "d").string()}),
+              HasSubstr(text.string()));
+}
+
+TEST_F(AnalyzeCli, DiagramWithAnUnknownForceIsAUsageError) {
+  const auto contacts = write("c.csv", "i,j,fn,ft\n0,1,1,1\n");
+  EXPECT_THAT(fails_with(2, {"diagram", "--contacts", contacts.string(), "--force", "shear"}),
+              AllOf(HasSubstr("--force"), HasSubstr("shear")));
+  EXPECT_THAT(fails_with(2, {"diagram", "--contacts", (dir() / "absent.csv").string()}),
+              AllOf(HasSubstr("--contacts"), HasSubstr("no such file")));
+}
+
+TEST_F(AnalyzeCli, DistanceChecksItsOptionsWithTheSharedVocabulary) {
+  const auto a = write("a.json", R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1.5]]})");
+  const auto b = write("b.json", R"({"pd0":[],"pd1":[[1.0,0.9]]})");
+  const auto usage = [&](std::vector<std::string> extra, const std::string& named) {
+    std::vector<std::string> args{"distance", a.string(), b.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    EXPECT_THAT(fails_with(2, args), HasSubstr(named)) << ::testing::PrintToString(extra);
+  };
+  usage({"--metric", "bottleneck", "--q", "2"}, "--q");
+  usage({"--metric", "wasserstein"}, "--q");
+  usage({"--metric", "wasserstein", "--q", "0.5"}, "--q");
+  usage({"--metric", "wasserstein1", "--q", "2"}, "--q");
+  usage({"--metric", "earth-mover"}, "--metric");
+  usage({"--metric", "bottleneck", "--dim", "2"}, "--dim");
+  usage({"--metric", "bottleneck", "--essential", "maybe"}, "--essential");
+  usage({"--metric", "bottleneck", "--delta", "-1"}, "--delta");
+  EXPECT_THAT(fails_with(2, {"distance", a.string(), (dir() / "missing.json").string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr("missing.json"), HasSubstr("no such file")));
+  // A file that is there but holds no such diagram is bad input, not bad usage.
+  const auto empty = write("empty.json", "{}");
+  EXPECT_THAT(fails_with(1, {"distance", a.string(), empty.string(), "--metric", "bottleneck"}), HasSubstr("pd1"));
+
+  const ProcessResult ok = analyze({"distance", a.string(), b.string(), "--metric", "wasserstein", "--q", "2"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const auto out = nlohmann::json::parse(ok.out);
+  EXPECT_EQ(out["metric"], "wasserstein");
+  EXPECT_EQ(out["q"], 2.0);
+  EXPECT_EQ(out["dim"], 1);
+}
+
+TEST_F(AnalyzeCli, HelpNamesTheExitCodes) {
+  const ProcessResult r = analyze({"--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, AllOf(HasSubstr("exit codes"), HasSubstr("0 ok"), HasSubstr("1 "), HasSubstr("2 ")));
+}
+
+}  // namespace
+}  // namespace fnet::testing
