@@ -7,6 +7,7 @@
 #include <cstring>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -99,11 +100,16 @@ struct SeriesOptions {
 
 double idle_seconds(const json& run) { return run.at("seconds_since_last_frame").get<double>(); }
 
-// The order of `fnetctl runs`: least recently active first, newest activity last. runs.list
-// reports only the idle time since the server last received a frame of a run, which restarts with
-// the server; a last-activity time that survives restarts is to be compared here instead.
+// The order of `fnetctl runs`: least recently active first, newest activity last, by the
+// server's last_activity (Unix seconds, kept in each run's store, so it survives restarts); a run
+// whose store predates those times (null) comes first.
+double last_activity(const json& run) {
+  const auto it = run.find("last_activity");
+  return it == run.end() || it->is_null() ? -std::numeric_limits<double>::infinity() : it->get<double>();
+}
+
 bool active_before(const json& a, const json& b) {
-  if (idle_seconds(a) != idle_seconds(b)) return idle_seconds(a) > idle_seconds(b);
+  if (last_activity(a) != last_activity(b)) return last_activity(a) < last_activity(b);
   return a.at("run").get<std::string>() < b.at("run").get<std::string>();
 }
 

@@ -69,7 +69,7 @@ constexpr const char* kUsage =
     "Units: lengths in d_ave, masses in the mean grain mass, speeds in d_ave/tau_c, times in tau_c\n"
     "(k_n in m g/d_ave as in the paper). Parameters: defaults, then --config, then flags.\n"
     "\n"
-    "Output: --export-csv DIR writes DIR/index.csv (frame,step,time,rho,Z) and per frame\n"
+    "Output: --export-csv DIR writes DIR/index.csv (frame,step,time,rho,z) and per frame\n"
     "DIR/frame_NNNN_particles.csv (id,x,y,r), DIR/frame_NNNN_contacts.csv (i,j,fn,ft; the input of\n"
     "'fnet-analyze diagram') and DIR/frame_NNNN_wall_contacts.csv (grain,wall,side,fn,ft).\n"
     "Frames are published on Cyclone DDS (topics fnet_RunInfo, fnet_ForceFrame; reliable, keep-all,\n"

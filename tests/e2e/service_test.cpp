@@ -225,7 +225,7 @@ TEST(Service, RunsKeepTheirLastActivityAndTheNewestRunAcrossRestarts) {
   std::this_thread::sleep_for(1500ms);
   for (int restart = 0; restart < 2; ++restart) {  // the second start reads the stores the first rewrote
     SCOPED_TRACE(restart);
-    Server server = start_server(data, 57, tmp.path() / ("server" + std::to_string(restart) + ".log"));
+    Server server = start_server(data, 39, tmp.path() / ("server" + std::to_string(restart) + ".log"));
     RpcClient rpc("127.0.0.1", server.port);
     const json listed = rpc.call("runs.list");
     ASSERT_EQ(listed["runs"].size(), 2u);
