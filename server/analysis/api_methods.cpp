@@ -279,12 +279,10 @@ json server_status(const ApiContext& ctx) {
   json runs = json::array();
   for (const RunSummary& s : r.runs()) runs.push_back(summary_json(s));
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
+          {"ingest", ctx.ingest_state()},
           {"runs", runs},
           {"frames_per_second", r.frames_per_second()},
-          {"lag",
-           {{"frames_in_flight", r.in_flight()},
-            {"ingest_queue", ctx.ingest_queue()},
-            {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
+          {"lag", {{"frames_in_flight", r.in_flight()}, {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
           {"frames",
            {{"received", c.received},
             {"analyzed", c.analyzed},

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     context.connections = [&server] { return server.connections(); };
 
     fnet::server::Ingest ingest(registry, {static_cast<dds_domainid_t>(domain), max_in_flight});
+    context.ingest_state = [&ingest] { return ingest.state(); };
     std::cout << "fnet-server listening on " << bind << ":" << server.port() << " data-dir " << data_dir << std::endl;
 
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);

@@ -1,13 +1,17 @@
 // fnet-server end to end, with real processes on loopback: frames published over DDS by
 // fnet-analyze publish (as fnet-simd streams them), the server analyzing and storing them, and
 // clients on its TCP port.
+#include <poll.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -410,6 +414,56 @@ TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   EXPECT_EQ(seen, (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
   EXPECT_FALSE(again.next_notification(500ms)) << "a point was sent twice";
   pub->stop();
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Service, BrokenDdsConfigurationFailsAtStartNamingIt) {
+  testing::TempDir tmp;
+  const fs::path broken = tmp.path() / "broken.xml";
+  std::ofstream(broken) << "<CycloneDDS><Domain><General><NoSuchSetting>1</NoSuchSetting></General></Domain>";
+  for (const std::string& uri : {"file://" + broken.string(), "file://" + (tmp.path() / "absent.xml").string()}) {
+    const fs::path log = tmp.path() / "server.log";
+    fs::remove(log);
+    Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "51"}, log,
+                   {{"CYCLONEDDS_URI", uri}});
+    const auto rc = server.wait(60s);
+    ASSERT_TRUE(rc) << "fnet-server kept running with CYCLONEDDS_URI=" << uri;
+    EXPECT_NE(*rc, 0);
+    const std::string text = read_file(log);
+    EXPECT_NE(text.find("DDS"), std::string::npos) << text;
+    EXPECT_NE(text.find(uri), std::string::npos) << "the message does not name CYCLONEDDS_URI: " << text;
+    EXPECT_EQ(server.read_rest().find("listening"), std::string::npos) << "it announced it was serving";
+  }
+}
+
+TEST(Service, StatusReportsTheIngestStateAndNoDeadCounters) {
+  testing::TempDir tmp;
+  Server server = start_server(tmp.path() / "data", 52, tmp.path() / "server.log");
+  RpcClient rpc("127.0.0.1", server.port);
+  const json status = rpc.call("server.status");
+  EXPECT_EQ(status["ingest"], "running");
+  EXPECT_FALSE(status["lag"].contains("ingest_queue")) << "a counter that is always 0";
+  EXPECT_EQ(server.process->stop(), 0);
+}
+
+TEST(Service, TakenPortStopsTheServerNamingTheAddress) {
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::acceptor occupant(io, {boost::asio::ip::make_address("127.0.0.1"), 0});
+  const unsigned short port = occupant.local_endpoint().port();
+  testing::TempDir tmp;
+  Process server(FNET_SERVER,
+                 {"--data-dir", (tmp.path() / "data").string(), "--port", std::to_string(port), "--domain", "51"},
+                 tmp.path() / "server.log", dds_environment());
+  const auto rc = server.wait(60s);
+  ASSERT_TRUE(rc) << "fnet-server kept running on a taken port";
+  EXPECT_NE(*rc, 0);
+  const std::string text = read_file(tmp.path() / "server.log");
+  EXPECT_NE(text.find("127.0.0.1:" + std::to_string(port)), std::string::npos) << text;
+  EXPECT_NE(text.find("in use"), std::string::npos) << text;
 }
 
 }  // namespace
