@@ -466,6 +466,15 @@ TEST(Service, TakenPortStopsTheServerNamingTheAddress) {
   EXPECT_NE(text.find("in use"), std::string::npos) << text;
 }
 
+TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
+  testing::TempDir tmp;
+  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--bind", "localhost:7707"},
+                 tmp.path() / "server.log", dds_environment());
+  EXPECT_EQ(server.wait(60s), 2);
+  const std::string text = read_file(tmp.path() / "server.log");
+  EXPECT_NE(text.find("--bind 'localhost:7707'"), std::string::npos) << text;
+}
+
 // One connection, whole lines: requests as a document writes them, every reply and notification.
 class LineConnection {
  public:
