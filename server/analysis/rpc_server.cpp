@@ -221,10 +221,15 @@ Server::Server(asio::io_context& io, const std::string& address, unsigned short 
     throw std::runtime_error("cannot listen on " + address + ":" + std::to_string(port) + ": " + step + ": " +
                              ec.message());
   };
-  if (acceptor_.open(endpoint.protocol(), ec)) fail("open");
-  if (acceptor_.set_option(tcp::acceptor::reuse_address(true), ec)) fail("setsockopt");
-  if (acceptor_.bind(endpoint, ec)) fail("bind");
-  if (acceptor_.listen(asio::socket_base::max_listen_connections, ec)) fail("listen");
+  // (Each call then a test of ec: newer Boost returns void from the error_code overloads.)
+  acceptor_.open(endpoint.protocol(), ec);
+  if (ec) fail("open");
+  acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (ec) fail("setsockopt");
+  acceptor_.bind(endpoint, ec);
+  if (ec) fail("bind");
+  acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) fail("listen");
   accept_next();
 }
 
