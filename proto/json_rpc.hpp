@@ -15,11 +15,11 @@ enum Code : int {
   kParseError = -32700,
   kInvalidRequest = -32600,
   kMethodNotFound = -32601,
-  kInvalidParams = -32602,
+  kInvalidParams = -32602,  // data.parameter: the parameter at fault, when there is one
   kInternalError = -32603,
   // fnet's application codes
-  kUnknownRun = -32001,
-  kUnknownFrame = -32002,
+  kUnknownRun = -32001,    // data.run: the run named (null when none was and none exists)
+  kUnknownFrame = -32002,  // data.run, data.frame
   kTooManySubscriptions = -32003,
   kServerBusy = -32004,
 };

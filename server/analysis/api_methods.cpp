@@ -1,11 +1,18 @@
 #include "server/analysis/api_methods.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
 
 #include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/metric_vocabulary.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
 #include "common/codec/run_info_json.hpp"
@@ -16,114 +23,127 @@ namespace {
 using json = nlohmann::json;
 using rpc::Error;
 
-// ---- parameter parsing: every failure names the parameter -----------------------------------
+// ---- parameter parsing: every failure names the parameter and what it must be ----------------
 
-const json* find(const json& params, const char* name) {
-  if (!params.is_object()) throw Error(rpc::kInvalidParams, "params must be an object");
+[[noreturn]] void invalid(std::string_view name, const std::string& message) {
+  throw Error(rpc::kInvalidParams, message, {{"parameter", name}});
+}
+
+[[noreturn]] void wrong_type(std::string_view name, const char* expected, const json& got) {
+  invalid(name, "parameter '" + std::string(name) + "' must be " + expected + " (got " + got.type_name() + ")");
+}
+
+// A parameter given as null is taken as omitted.
+const json* find(const json& params, std::string_view name) {
   const auto it = params.find(name);
   return it == params.end() || it->is_null() ? nullptr : &*it;
 }
 
-std::string get_string(const json& params, const char* name, std::optional<std::string> fallback = std::nullopt) {
+std::optional<std::string> get_string(const json& params, std::string_view name) {
   const json* v = find(params, name);
-  if (!v) {
-    if (fallback) return *fallback;
-    throw Error(rpc::kInvalidParams, std::string("missing parameter '") + name + "'");
-  }
-  if (!v->is_string()) throw Error(rpc::kInvalidParams, std::string("parameter '") + name + "' must be a string");
+  if (!v) return std::nullopt;
+  if (!v->is_string()) wrong_type(name, "a string", *v);
   return v->get<std::string>();
 }
 
-std::optional<std::uint32_t> get_index(const json& params, const char* name) {
+std::optional<std::uint32_t> get_index(const json& params, std::string_view name) {
   const json* v = find(params, name);
   if (!v) return std::nullopt;
-  if (!v->is_number_integer() || v->get<std::int64_t>() < 0 || v->get<std::int64_t>() > UINT32_MAX)
-    throw Error(rpc::kInvalidParams, std::string("parameter '") + name + "' must be a non-negative integer");
-  return static_cast<std::uint32_t>(v->get<std::int64_t>());
+  // A negative number is number_integer, a large one number_unsigned: both are read without wrapping.
+  const bool fits = v->is_number_unsigned() ? v->get<std::uint64_t>() <= UINT32_MAX
+                                            : v->is_number_integer() && v->get<std::int64_t>() >= 0 &&
+                                                  v->get<std::int64_t>() <= static_cast<std::int64_t>(UINT32_MAX);
+  if (!fits) {
+    if (!v->is_number_integer()) wrong_type(name, "a non-negative integer", *v);
+    invalid(name,
+            "parameter '" + std::string(name) + "' must be a non-negative integer below 2^32 (got " + v->dump() + ")");
+  }
+  return static_cast<std::uint32_t>(v->get<std::uint64_t>());
 }
 
-std::uint32_t require_index(const json& params, const char* name) {
+std::uint32_t require_index(const json& params, std::string_view name) {
   const auto v = get_index(params, name);
-  if (!v) throw Error(rpc::kInvalidParams, std::string("missing parameter '") + name + "'");
+  if (!v) invalid(name, "missing parameter '" + std::string(name) + "'");
   return *v;
 }
 
-double get_number(const json& params, const char* name, double fallback) {
+std::optional<double> get_number(const json& params, std::string_view name) {
   const json* v = find(params, name);
-  if (!v) return fallback;
-  if (!v->is_number() || !std::isfinite(v->get<double>()))
-    throw Error(rpc::kInvalidParams, std::string("parameter '") + name + "' must be a finite number");
+  if (!v) return std::nullopt;
+  if (!v->is_number()) wrong_type(name, "a number", *v);
   return v->get<double>();
 }
 
 int get_dim(const json& params) {
   const json* v = find(params, "dim");
   if (!v) return 0;
-  if (!v->is_number_integer() || (v->get<int>() != 0 && v->get<int>() != 1))
-    throw Error(rpc::kInvalidParams, "parameter 'dim' must be 0 or 1");
-  return v->get<int>();
+  if (!v->is_number_integer()) wrong_type("dim", "an integer, 0 or 1", *v);
+  // Read as the widest integer: 2^32 once read as an int was dim 0.
+  const long long dim = v->is_number_unsigned() && v->get<std::uint64_t>() > std::numeric_limits<long long>::max()
+                            ? std::numeric_limits<long long>::max()
+                            : v->get<long long>();
+  try {
+    return check_dim(dim);
+  } catch (const std::invalid_argument& e) {
+    invalid("dim", std::string("parameter 'dim': ") + e.what());
+  }
 }
 
 ForceKind get_force(const json& params) {
   try {
-    return parse_force_kind(get_string(params, "force", "normal"));
+    return parse_force_kind(get_string(params, "force").value_or("normal"));
   } catch (const std::invalid_argument& e) {
-    throw Error(rpc::kInvalidParams, std::string("parameter 'force': ") + e.what());
+    invalid("force", std::string("parameter 'force': ") + e.what());
   }
 }
 
 EssentialConvention get_essential(const json& params) {
   try {
-    return parse_essential_convention(get_string(params, "essential", "floor"));
+    return parse_essential_convention(get_string(params, "essential").value_or("floor"));
   } catch (const std::invalid_argument& e) {
-    throw Error(rpc::kInvalidParams, std::string("parameter 'essential': ") + e.what());
+    invalid("essential", std::string("parameter 'essential': ") + e.what());
   }
 }
 
-// A metric request: bottleneck | wasserstein1 | wasserstein2 | wasserstein (with q >= 1).
-struct MetricSpec {
-  std::string name;
-  double q = 0;                  // 0 for bottleneck
-  std::optional<Metric> stored;  // one of the three metrics every frame carries
-};
-
-MetricSpec get_metric(const json& params) {
-  MetricSpec m;
-  m.name = get_string(params, "metric");
-  if (m.name == "bottleneck")
-    m.stored = Metric::bottleneck;
-  else if (m.name == "wasserstein1")
-    m.stored = Metric::wasserstein1, m.q = 1;
-  else if (m.name == "wasserstein2")
-    m.stored = Metric::wasserstein2, m.q = 2;
-  else if (m.name == "wasserstein") {
-    m.q = get_number(params, "q", 0);
-    if (!(m.q >= 1)) throw Error(rpc::kInvalidParams, "metric 'wasserstein' needs parameter 'q' >= 1");
-    if (m.q == 1) m.stored = Metric::wasserstein1;
-    if (m.q == 2) m.stored = Metric::wasserstein2;
-  } else {
-    throw Error(rpc::kInvalidParams,
-                "unknown metric '" + m.name + "' (expected bottleneck, wasserstein1, wasserstein2 or wasserstein)");
+MetricChoice get_metric(const json& params) {
+  const auto name = get_string(params, "metric");
+  if (!name) invalid("metric", "missing parameter 'metric'");
+  const auto q = get_number(params, "q");
+  try {
+    return parse_metric(*name, q);
+  } catch (const std::invalid_argument& e) {
+    // Name 'q' when it is the value at fault, 'metric' otherwise (an unknown name, or one that needs q).
+    const bool names_q = q && std::find(kMetricNames.begin(), kMetricNames.end(), *name) != kMetricNames.end();
+    invalid(names_q ? "q" : "metric", std::string("parameter '") + (names_q ? "q" : "metric") + "': " + e.what());
   }
-  return m;
 }
 
-json describe(const MetricSpec& m, int dim, ForceKind force, EssentialConvention essential) {
+json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConvention essential) {
   json out = {{"metric", m.name}, {"dim", dim}, {"force", to_string(force)}, {"essential", to_string(essential)}};
-  if (m.q > 0) out["q"] = m.q;
+  if (m.q) out["q"] = *m.q;
   return out;
 }
 
 // ---- runs ------------------------------------------------------------------------------------
 
-std::string resolve_run(const Registry& registry, const json& params, const char* name = "run") {
-  std::string run = get_string(params, name, std::string());
+[[noreturn]] void unknown_run(const std::string& run) {
+  throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
+}
+
+[[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index) {
+  throw Error(rpc::kUnknownFrame, "run '" + run + "' has no analyzed frame " + std::to_string(index),
+              {{"run", run}, {"frame", index}});
+}
+
+// The named run, or the newest one when the parameter is omitted.
+std::string resolve_run(const Registry& registry, const json& params, std::string_view name = "run") {
+  std::string run = get_string(params, name).value_or("");
   if (run.empty()) {
     run = registry.newest_run();
-    if (run.empty()) throw Error(rpc::kUnknownRun, "the server has no runs yet");
+    if (run.empty()) throw Error(rpc::kUnknownRun, "the server has no runs yet", {{"run", nullptr}});
     return run;
   }
-  if (!registry.has_run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
+  if (!registry.has_run(run)) unknown_run(run);
   return run;
 }
 
@@ -155,11 +175,8 @@ json point_json(const SeriesPoint& p) {
   json distances = json::object();
   for (const Metric metric : kMetrics)
     for (int dim = 0; dim < 2; ++dim)
-      for (const ForceKind force : kForces) {
-        const std::string key =
-            std::string(to_string(metric)) + "/pd" + std::to_string(dim) + "/" + std::string(to_string(force));
-        distances[key] = p.previous ? json(p.distances(metric, dim, force)) : json(nullptr);
-      }
+      for (const ForceKind force : kForces)
+        distances[series_key(metric, dim, force)] = p.previous ? json(p.distances(metric, dim, force)) : json(nullptr);
   return {{"run", p.run_id},
           {"frame", p.header.index},
           {"step", p.header.step},
@@ -171,17 +188,38 @@ json point_json(const SeriesPoint& p) {
 }
 
 // ---- methods -----------------------------------------------------------------------------------
+// Each checks every parameter before it looks the run up, so a malformed request is reported as such.
+
+json runs_list(const Registry& registry) {
+  json runs = json::array();
+  for (const RunSummary& s : registry.runs()) runs.push_back(summary_json(s));
+  return {{"runs", runs}};
+}
+
+json run_get(const Registry& registry, const json& params) {
+  const std::string run = resolve_run(registry, params);
+  const auto s = registry.run(run);
+  if (!s) unknown_run(run);
+  json out = summary_json(*s);
+  out["parameters"] = s->has_info ? to_json(s->info) : json(nullptr);
+  json rejected = json::array();
+  for (const RejectedFrame& r : registry.rejected(run)) rejected.push_back({{"frame", r.index}, {"reason", r.reason}});
+  out["rejected_frames"] = rejected;
+  return out;
+}
 
 json series_get(const Registry& registry, const json& params) {
-  // Every parameter is checked before the run is looked up, so a malformed request is reported as such.
-  const MetricSpec metric = get_metric(params);
+  const MetricChoice metric = get_metric(params);
   const int dim = get_dim(params);
   const ForceKind force = get_force(params);
   const EssentialConvention essential = get_essential(params);
   const auto from = get_index(params, "from"), to = get_index(params, "to");
+  if (from && to && *from > *to)
+    invalid("from", "parameter 'from' (" + std::to_string(*from) + ") is after 'to' (" + std::to_string(*to) +
+                        "): the range is inclusive, from <= to");
   const std::string run = resolve_run(registry, params);
   const auto frames = registry.frames(run);
-  if (!frames) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'");
+  if (!frames) unknown_run(run);
 
   json out = describe(metric, dim, force, essential);
   out["run"] = run;
@@ -208,8 +246,8 @@ json series_get(const Registry& registry, const json& params) {
       infinite.push_back(false);
       continue;
     }
-    const DistanceResult r = diagram_distance_q(diagram_of(prev_frame->diagrams, force, dim),
-                                                diagram_of(f->diagrams, force, dim), metric.q, essential);
+    const DistanceResult r = choice_distance(diagram_of(prev_frame->diagrams, force, dim),
+                                             diagram_of(f->diagrams, force, dim), metric, essential);
     value.push_back(r.infinite ? json(nullptr) : json(r.value));
     infinite.push_back(r.infinite);
     any_infinite |= r.infinite;
@@ -229,9 +267,7 @@ json diagram_get(const Registry& registry, const json& params) {
   const ForceKind force = get_force(params);
   const std::string run = resolve_run(registry, params);
   const auto f = registry.frame(run, index);
-  if (!f)
-    throw Error(rpc::kUnknownFrame, "run '" + run + "' has no analyzed frame " + std::to_string(index),
-                {{"run", run}, {"frame", index}});
+  if (!f) unknown_frame(run, index);
   const FrameDiagrams& d = f->diagrams[force];
   return {{"run", run},
           {"frame", index},
@@ -248,20 +284,20 @@ json diagram_get(const Registry& registry, const json& params) {
 json distance_get(const Registry& registry, const json& params) {
   const std::uint32_t frame_a = require_index(params, "frame");
   const std::uint32_t frame_b = require_index(params, "other_frame");
-  const MetricSpec metric = get_metric(params);
+  const MetricChoice metric = get_metric(params);
   const int dim = get_dim(params);
   const ForceKind force = get_force(params);
   const EssentialConvention essential = get_essential(params);
-  const double delta = get_number(params, "delta", 0);
-  if (delta < 0) throw Error(rpc::kInvalidParams, "parameter 'delta' must be >= 0");
+  const double delta = get_number(params, "delta").value_or(0);
+  if (!(delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
   const std::string run_a = resolve_run(registry, params, "run");
   const std::string run_b = find(params, "other_run") ? resolve_run(registry, params, "other_run") : run_a;
   const auto a = registry.frame(run_a, frame_a), b = registry.frame(run_b, frame_b);
-  if (!a) throw Error(rpc::kUnknownFrame, "run '" + run_a + "' has no analyzed frame " + std::to_string(frame_a));
-  if (!b) throw Error(rpc::kUnknownFrame, "run '" + run_b + "' has no analyzed frame " + std::to_string(frame_b));
+  if (!a) unknown_frame(run_a, frame_a);
+  if (!b) unknown_frame(run_b, frame_b);
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = diagram_distance_q(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
-                                              metric.q, essential, delta);
+  const DistanceResult r = choice_distance(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
+                                           metric, essential, delta);
   json out = to_json(r);
   out.update(describe(metric, dim, force, essential));
   out["run"] = run_a;
@@ -280,12 +316,10 @@ json server_status(const ApiContext& ctx) {
   json runs = json::array();
   for (const RunSummary& s : r.runs()) runs.push_back(summary_json(s));
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
+          {"ingest", ctx.ingest_state()},
           {"runs", runs},
           {"frames_per_second", r.frames_per_second()},
-          {"lag",
-           {{"frames_in_flight", r.in_flight()},
-            {"ingest_queue", ctx.ingest_queue()},
-            {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
+          {"lag", {{"frames_in_flight", r.in_flight()}, {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
           {"frames",
            {{"received", c.received},
             {"analyzed", c.analyzed},
@@ -299,104 +333,165 @@ json server_status(const ApiContext& ctx) {
           {"subscriptions", r.subscriptions()}};
 }
 
-// Subscriptions of one connection, released when it closes.
-struct SessionSubscriptions {
-  std::mutex mutex;
-  std::set<std::uint64_t> ids;
+// ---- subscriptions: each connection's, released when it closes --------------------------------
+
+class Subscriptions : public std::enable_shared_from_this<Subscriptions> {
+ public:
+  explicit Subscriptions(ApiContext& ctx) : ctx_(ctx) {}
+
+  json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    const auto since = get_index(params, "since");
+    const std::string run = get_string(params, "run").value_or("");
+    Registry& registry = ctx_.registry;
+    if (!run.empty() && !registry.has_run(run)) unknown_run(run);
+    const std::shared_ptr<Session> mine = of(session);
+    {
+      std::lock_guard lock(mine->mutex);
+      if (mine->ids.size() >= ctx_.max_subscriptions_per_connection)
+        throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx_.max_subscriptions_per_connection) +
+                                                    " subscriptions per connection");
+    }
+    std::weak_ptr<rpc::Session> weak = session;
+    const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
+      const auto s = weak.lock();
+      if (!s) return false;
+      json params_out = point_json(p);
+      params_out["subscription"] = subscription;
+      return s->send(rpc::notification("series.point", std::move(params_out)));
+    });
+    if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
+    std::lock_guard lock(mine->mutex);
+    mine->ids.insert(id);
+    return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
+  }
+
+  json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    const std::uint32_t id = require_index(params, "subscription");
+    std::shared_ptr<Session> mine;
+    {
+      std::lock_guard lock(mutex_);
+      const auto it = sessions_.find(session->id());
+      if (it != sessions_.end()) mine = it->second;
+    }
+    bool found = false;
+    if (mine) {
+      std::lock_guard lock(mine->mutex);
+      found = mine->ids.erase(id) > 0;
+    }
+    if (!found)
+      invalid("subscription",
+              "parameter 'subscription': no subscription " + std::to_string(id) + " on this connection");
+    ctx_.registry.unsubscribe(id);
+    return {{"unsubscribed", id}};
+  }
+
+ private:
+  struct Session {
+    std::mutex mutex;
+    std::set<std::uint64_t> ids;
+  };
+
+  // This connection's set, created on its first subscription along with the hook that releases it.
+  std::shared_ptr<Session> of(const std::shared_ptr<rpc::Session>& session) {
+    std::lock_guard lock(mutex_);
+    auto& slot = sessions_[session->id()];
+    if (!slot) {
+      slot = std::make_shared<Session>();
+      session->on_close([self = shared_from_this(), id = session->id()] { self->release(id); });
+    }
+    return slot;
+  }
+
+  void release(std::uint64_t session_id) {
+    std::shared_ptr<Session> subs;
+    {
+      std::lock_guard lock(mutex_);
+      const auto it = sessions_.find(session_id);
+      if (it == sessions_.end()) return;
+      subs = it->second;
+      sessions_.erase(it);
+    }
+    std::lock_guard lock(subs->mutex);
+    for (const std::uint64_t s : subs->ids) ctx_.registry.unsubscribe(s);
+  }
+
+  ApiContext& ctx_;
+  std::mutex mutex_;
+  std::map<std::uint64_t, std::shared_ptr<Session>> sessions_;
 };
+
+// ---- the method table: what each method accepts drives the unknown-parameter check -------------
+
+struct Method {
+  std::vector<std::string_view> params;  // every parameter the method accepts; any other is an error
+  std::function<json(const json& params, const std::shared_ptr<rpc::Session>& session)> run;
+};
+
+using MethodTable = std::map<std::string, Method, std::less<>>;
+
+MethodTable method_table(ApiContext& ctx) {
+  Registry& registry = ctx.registry;
+  const auto subscriptions = std::make_shared<Subscriptions>(ctx);
+  const auto plain = [](auto fn) {
+    return [fn](const json& params, const std::shared_ptr<rpc::Session>&) { return fn(params); };
+  };
+  return {
+      {"runs.list", {{}, plain([&registry](const json&) { return runs_list(registry); })}},
+      {"run.get", {{"run"}, plain([&registry](const json& p) { return run_get(registry, p); })}},
+      {"series.get",
+       {{"metric", "q", "run", "dim", "force", "essential", "from", "to"},
+        plain([&registry](const json& p) { return series_get(registry, p); })}},
+      {"diagram.get",
+       {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
+      {"distance.get",
+       {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta"},
+        plain([&registry](const json& p) { return distance_get(registry, p); })}},
+      {"series.subscribe",
+       {{"run", "since"},
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->subscribe(p, s);
+        }}},
+      {"series.unsubscribe",
+       {{"subscription"},
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->unsubscribe(p, s);
+        }}},
+      {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
+  };
+}
+
+// The params as an object, every name one the method accepts: a typo ("dimension") is an error,
+// not a silently applied default.
+json checked_params(const std::string& method, const Method& m, const json& params) {
+  if (params.is_array()) {
+    if (!params.empty())
+      throw Error(rpc::kInvalidParams, "params of '" + method + "' must be an object of named parameters");
+    return json::object();
+  }
+  for (const auto& [name, value] : params.items()) {
+    if (std::find(m.params.begin(), m.params.end(), name) != m.params.end()) continue;
+    json accepted = json::array();
+    std::string list;
+    for (const std::string_view p : m.params) {
+      accepted.push_back(p);
+      list += (list.empty() ? "" : ", ") + std::string(p);
+    }
+    throw Error(rpc::kInvalidParams,
+                "unknown parameter '" + name + "' for method '" + method + "' (" +
+                    (list.empty() ? std::string("it takes none") : "accepted: " + list) + ")",
+                {{"parameter", name}, {"accepted", accepted}});
+  }
+  return params;
+}
 
 }  // namespace
 
 rpc::Handler make_api(ApiContext& ctx) {
-  // Per-session subscription sets, keyed by session id; entries go when the session closes.
-  auto sessions = std::make_shared<std::map<std::uint64_t, std::shared_ptr<SessionSubscriptions>>>();
-  auto sessions_mutex = std::make_shared<std::mutex>();
-
-  return [&ctx, sessions, sessions_mutex](const std::string& method, const json& params,
-                                          const std::shared_ptr<rpc::Session>& session) -> json {
-    Registry& registry = ctx.registry;
-    if (method == "runs.list") {
-      json runs = json::array();
-      for (const RunSummary& s : registry.runs()) runs.push_back(summary_json(s));
-      return {{"runs", runs}};
-    }
-    if (method == "run.get") {
-      const std::string run = resolve_run(registry, params);
-      const auto s = registry.run(run);
-      json out = summary_json(*s);
-      out["parameters"] = s->has_info ? to_json(s->info) : json(nullptr);
-      json rejected = json::array();
-      for (const RejectedFrame& r : registry.rejected(run))
-        rejected.push_back({{"frame", r.index}, {"reason", r.reason}});
-      out["rejected_frames"] = rejected;
-      return out;
-    }
-    if (method == "series.get") return series_get(registry, params);
-    if (method == "diagram.get") return diagram_get(registry, params);
-    if (method == "distance.get") return distance_get(registry, params);
-    if (method == "server.status") return server_status(ctx);
-    if (method == "series.subscribe") {
-      const std::string run = get_string(params, "run", std::string());
-      if (!run.empty() && !registry.has_run(run)) throw Error(rpc::kUnknownRun, "unknown run '" + run + "'");
-      const auto since = get_index(params, "since");
-      std::shared_ptr<SessionSubscriptions> mine;
-      {
-        std::lock_guard lock(*sessions_mutex);
-        auto& slot = (*sessions)[session->id()];
-        if (!slot) {
-          slot = std::make_shared<SessionSubscriptions>();
-          session->on_close([&registry, sessions, sessions_mutex, id = session->id()] {
-            std::shared_ptr<SessionSubscriptions> subs;
-            {
-              std::lock_guard inner(*sessions_mutex);
-              subs = (*sessions)[id];
-              sessions->erase(id);
-            }
-            if (!subs) return;
-            std::lock_guard inner(subs->mutex);
-            for (const std::uint64_t s : subs->ids) registry.unsubscribe(s);
-          });
-        }
-        mine = slot;
-      }
-      {
-        std::lock_guard lock(mine->mutex);
-        if (mine->ids.size() >= ctx.max_subscriptions_per_connection)
-          throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx.max_subscriptions_per_connection) +
-                                                      " subscriptions per connection");
-      }
-      std::weak_ptr<rpc::Session> weak = session;
-      const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
-        const auto s = weak.lock();
-        if (!s) return false;
-        json params_out = point_json(p);
-        params_out["subscription"] = subscription;
-        return s->send(rpc::notification("series.point", std::move(params_out)));
-      });
-      if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
-      std::lock_guard lock(mine->mutex);
-      mine->ids.insert(id);
-      return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
-    }
-    if (method == "series.unsubscribe") {
-      const auto id = get_index(params, "subscription");
-      if (!id) throw Error(rpc::kInvalidParams, "missing parameter 'subscription'");
-      std::shared_ptr<SessionSubscriptions> mine;
-      {
-        std::lock_guard lock(*sessions_mutex);
-        const auto it = sessions->find(session->id());
-        if (it != sessions->end()) mine = it->second;
-      }
-      bool found = false;
-      if (mine) {
-        std::lock_guard lock(mine->mutex);
-        found = mine->ids.erase(*id) > 0;
-      }
-      if (!found) throw Error(rpc::kInvalidParams, "no subscription " + std::to_string(*id) + " on this connection");
-      registry.unsubscribe(*id);
-      return {{"unsubscribed", *id}};
-    }
-    throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
+  auto table = std::make_shared<const MethodTable>(method_table(ctx));
+  return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Session>& session) -> json {
+    const auto it = table->find(method);
+    if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
+    return it->second.run(checked_params(method, it->second, params), session);
   };
 }
 

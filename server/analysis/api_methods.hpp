@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <functional>
+#include <string>
 
 #include "server/analysis/rpc_server.hpp"
 #include "server/analysis/run_registry.hpp"
@@ -14,7 +15,8 @@ struct ApiContext {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::size_t max_subscriptions_per_connection = 16;
   std::function<std::size_t()> connections = [] { return std::size_t{0}; };
-  std::function<std::size_t()> ingest_queue = [] { return std::size_t{0}; };  // frames taken but waiting
+  // "running", or "stopped: <reason>" when the DDS ingest ended on an error.
+  std::function<std::string()> ingest_state = [] { return std::string("not started"); };
 };
 
 rpc::Handler make_api(ApiContext& context);

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <thread>
 
+#include <boost/asio/ip/address.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/program_options.hpp>
 
@@ -52,6 +53,9 @@ int main(int argc, char** argv) {
     }
     po::notify(vm);
     if (threads == 0 || max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
+    boost::system::error_code bad_address;
+    boost::asio::ip::make_address(bind, bad_address);
+    if (bad_address) throw po::error("--bind '" + bind + "' is not an IP address");
   } catch (const po::error& e) {
     std::cerr << "fnet-server: " << e.what() << " (see --help)\n";
     return 2;
@@ -76,6 +80,7 @@ int main(int argc, char** argv) {
     context.connections = [&server] { return server.connections(); };
 
     fnet::server::Ingest ingest(registry, {static_cast<dds_domainid_t>(domain), max_in_flight});
+    context.ingest_state = [&ingest] { return ingest.state(); };
     std::cout << "fnet-server listening on " << bind << ":" << server.port() << " data-dir " << data_dir << std::endl;
 
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);

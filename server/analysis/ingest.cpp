@@ -1,14 +1,28 @@
 #include "server/analysis/ingest.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
-
-#include "common/transport/frame_transport.hpp"
+#include <stdexcept>
 
 namespace fnet::server {
+namespace {
+
+std::unique_ptr<dds::FrameSubscriber> subscribe(const IngestOptions& options) {
+  try {
+    return std::make_unique<dds::FrameSubscriber>(options.domain, static_cast<std::int32_t>(options.max_in_flight));
+  } catch (const std::exception& e) {
+    const char* uri = std::getenv("CYCLONEDDS_URI");
+    throw std::runtime_error("cannot subscribe to DDS domain " + std::to_string(options.domain) + " (" + e.what() +
+                             "); CYCLONEDDS_URI is " + (uri ? "'" + std::string(uri) + "'" : std::string("not set")) +
+                             ": check that it names a readable, valid Cyclone DDS configuration");
+  }
+}
+
+}  // namespace
 
 Ingest::Ingest(Registry& registry, IngestOptions options)
-    : registry_(registry), options_(options), thread_([this] { run(); }) {}
+    : registry_(registry), options_(options), subscriber_(subscribe(options_)), thread_([this] { run(); }) {}
 
 Ingest::~Ingest() { stop(); }
 
@@ -17,16 +31,20 @@ void Ingest::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+std::string Ingest::state() const {
+  std::lock_guard lock(mutex_);
+  return state_;
+}
+
 void Ingest::run() {
   try {
-    dds::FrameSubscriber subscriber(options_.domain, static_cast<std::int32_t>(options_.max_in_flight));
     auto last_gap_check = std::chrono::steady_clock::now();
     while (!stopping_) {
       const std::size_t in_flight = registry_.in_flight();
       if (in_flight >= options_.max_in_flight) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       } else {
-        dds::Received got = subscriber.take(DDS_MSECS(100), options_.max_in_flight - in_flight);
+        dds::Received got = subscriber_->take(DDS_MSECS(100), options_.max_in_flight - in_flight);
         for (const RunInfo& info : got.infos) registry_.on_info(info);
         for (RunFrame& frame : got.frames) registry_.on_frame(std::move(frame));
         for (const std::string& reason : got.malformed) registry_.on_malformed(reason);
@@ -37,7 +55,9 @@ void Ingest::run() {
       }
     }
   } catch (const std::exception& e) {
-    std::cerr << "fnet-server: DDS ingest stopped: " << e.what() << "\n";
+    std::cerr << "fnet-server: DDS ingest stopped: " << e.what() << "; the API serves only what was stored\n";
+    std::lock_guard lock(mutex_);
+    state_ = std::string("stopped: ") + e.what();
   }
 }
 

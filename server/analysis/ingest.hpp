@@ -6,10 +6,14 @@
 
 #include <atomic>
 #include <cstddef>
+#include <memory>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include <dds/dds.h>
 
+#include "common/transport/frame_transport.hpp"
 #include "server/analysis/run_registry.hpp"
 
 namespace fnet::server {
@@ -21,16 +25,25 @@ struct IngestOptions {
 
 class Ingest {
  public:
+  // Creates the DDS participant and readers here, on the caller's thread, so that a server that
+  // cannot subscribe (a broken CYCLONEDDS_URI, say) fails at start instead of serving nothing;
+  // throws std::runtime_error naming the DDS problem.
   Ingest(Registry& registry, IngestOptions options);
   ~Ingest();  // stops and joins the thread
   void stop();
+
+  // "running", or "stopped: <reason>" once the thread ended on an error (server.status shows it).
+  std::string state() const;
 
  private:
   void run();
 
   Registry& registry_;
   IngestOptions options_;
+  std::unique_ptr<dds::FrameSubscriber> subscriber_;
   std::atomic<bool> stopping_{false};
+  mutable std::mutex mutex_;
+  std::string state_ = "running";
   std::thread thread_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <array>
 #include <istream>
+#include <stdexcept>
+#include <string>
 
 namespace fnet::rpc {
 namespace asio = boost::asio;
@@ -30,8 +32,9 @@ json dispatch(const json& request, const Handler& handler, const std::shared_ptr
     return has_id ? response(id, std::move(result)) : json();
   } catch (const Error& e) {
     return has_id ? error_response(id, e.code(), e.what(), e.data()) : json();
-  } catch (const json::exception& e) {
-    return has_id ? error_response(id, kInvalidParams, std::string("invalid params: ") + e.what()) : json();
+  } catch (const json::exception&) {
+    // Handlers check every parameter's type; reaching here is a bug, not the client's fault.
+    return has_id ? error_response(id, kInternalError, "internal error while reading the params") : json();
   } catch (const std::exception& e) {
     return has_id ? error_response(id, kInternalError, e.what()) : json();
   }
@@ -101,7 +104,9 @@ void Session::handle_line(const std::string& line) {
   try {
     request = json::parse(line);
   } catch (const json::parse_error& e) {
-    send(error_response(nullptr, kParseError, std::string("parse error: ") + e.what()));
+    // The library's text ("[json.exception.parse_error.101] ...") is not for users; the byte is.
+    send(error_response(nullptr, kParseError,
+                        "parse error: the request is not valid JSON (at byte " + std::to_string(e.byte) + ")"));
     return;
   }
   const auto self = shared_from_this();
@@ -207,11 +212,24 @@ void Session::close() {
 Server::Server(asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
                ServerLimits limits)
     : io_(io), acceptor_(io), handler_(std::move(handler)), limits_(limits) {
-  const tcp::endpoint endpoint(asio::ip::make_address(address), port);
-  acceptor_.open(endpoint.protocol());
-  acceptor_.set_option(tcp::acceptor::reuse_address(true));
-  acceptor_.bind(endpoint);
-  acceptor_.listen();
+  boost::system::error_code ec;
+  const asio::ip::address ip = asio::ip::make_address(address, ec);
+  if (ec) throw std::runtime_error("cannot listen on '" + address + "': not an IP address");
+  const tcp::endpoint endpoint(ip, port);
+  // Whoever owns the port must be named: a user meeting "address in use" has to find it.
+  const auto fail = [&](const char* step) {
+    throw std::runtime_error("cannot listen on " + address + ":" + std::to_string(port) + ": " + step + ": " +
+                             ec.message());
+  };
+  // (Each call then a test of ec: newer Boost returns void from the error_code overloads.)
+  acceptor_.open(endpoint.protocol(), ec);
+  if (ec) fail("open");
+  acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (ec) fail("setsockopt");
+  acceptor_.bind(endpoint, ec);
+  if (ec) fail("bind");
+  acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) fail("listen");
   accept_next();
 }
 

@@ -73,7 +73,8 @@ class Session : public std::enable_shared_from_this<Session> {
 
 class Server {
  public:
-  // Binds to `address`:`port` (port 0 picks a free one) and starts accepting.
+  // Binds to `address`:`port` (port 0 picks a free one) and starts accepting; throws
+  // std::runtime_error naming address:port when it cannot (the port taken, say).
   Server(boost::asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
          ServerLimits limits = {});
   unsigned short port() const;

@@ -1,13 +1,17 @@
 // fnet-server end to end, with real processes on loopback: frames published over DDS by
 // fnet-analyze publish (as fnet-simd streams them), the server analyzing and storing them, and
 // clients on its TCP port.
+#include <poll.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -438,6 +442,313 @@ TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   EXPECT_EQ(seen, (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
   EXPECT_FALSE(again.next_notification(500ms)) << "a point was sent twice";
   pub->stop();
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Service, BrokenDdsConfigurationFailsAtStartNamingIt) {
+  testing::TempDir tmp;
+  const fs::path broken = tmp.path() / "broken.xml";
+  std::ofstream(broken) << "<CycloneDDS><Domain><General><NoSuchSetting>1</NoSuchSetting></General></Domain>";
+  for (const std::string& uri : {"file://" + broken.string(), "file://" + (tmp.path() / "absent.xml").string()}) {
+    const fs::path log = tmp.path() / "server.log";
+    fs::remove(log);
+    Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "51"}, log,
+                   {{"CYCLONEDDS_URI", uri}});
+    const auto rc = server.wait(60s);
+    ASSERT_TRUE(rc) << "fnet-server kept running with CYCLONEDDS_URI=" << uri;
+    EXPECT_NE(*rc, 0);
+    const std::string text = read_file(log);
+    EXPECT_NE(text.find("DDS"), std::string::npos) << text;
+    EXPECT_NE(text.find(uri), std::string::npos) << "the message does not name CYCLONEDDS_URI: " << text;
+    EXPECT_EQ(server.read_rest().find("listening"), std::string::npos) << "it announced it was serving";
+  }
+}
+
+TEST(Service, StatusReportsTheIngestStateAndNoDeadCounters) {
+  testing::TempDir tmp;
+  Server server = start_server(tmp.path() / "data", 52, tmp.path() / "server.log");
+  RpcClient rpc("127.0.0.1", server.port);
+  const json status = rpc.call("server.status");
+  EXPECT_EQ(status["ingest"], "running");
+  EXPECT_FALSE(status["lag"].contains("ingest_queue")) << "a counter that is always 0";
+  EXPECT_EQ(server.process->stop(), 0);
+}
+
+TEST(Service, TakenPortStopsTheServerNamingTheAddress) {
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::acceptor occupant(io, {boost::asio::ip::make_address("127.0.0.1"), 0});
+  const unsigned short port = occupant.local_endpoint().port();
+  testing::TempDir tmp;
+  Process server(FNET_SERVER,
+                 {"--data-dir", (tmp.path() / "data").string(), "--port", std::to_string(port), "--domain", "51"},
+                 tmp.path() / "server.log", dds_environment());
+  const auto rc = server.wait(60s);
+  ASSERT_TRUE(rc) << "fnet-server kept running on a taken port";
+  EXPECT_NE(*rc, 0);
+  const std::string text = read_file(tmp.path() / "server.log");
+  EXPECT_NE(text.find("127.0.0.1:" + std::to_string(port)), std::string::npos) << text;
+  EXPECT_NE(text.find("in use"), std::string::npos) << text;
+}
+
+TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
+  testing::TempDir tmp;
+  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--bind", "localhost:7707"},
+                 tmp.path() / "server.log", dds_environment());
+  EXPECT_EQ(server.wait(60s), 2);
+  const std::string text = read_file(tmp.path() / "server.log");
+  EXPECT_NE(text.find("--bind 'localhost:7707'"), std::string::npos) << text;
+}
+
+// One connection, whole lines: requests as a document writes them, every reply and notification.
+class LineConnection {
+ public:
+  explicit LineConnection(unsigned short port) : socket_(io_) {
+    socket_.connect({boost::asio::ip::make_address("127.0.0.1"), port});
+  }
+  void send(const std::string& line) { boost::asio::write(socket_, boost::asio::buffer(line + "\n")); }
+  std::optional<json> next(std::chrono::milliseconds timeout = 30s) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (true) {
+      if (const auto nl = buffer_.find('\n'); nl != std::string::npos) {
+        const std::string line = buffer_.substr(0, nl);
+        buffer_.erase(0, nl + 1);
+        return json::parse(line);
+      }
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) return std::nullopt;
+      pollfd p{socket_.native_handle(), POLLIN, 0};
+      if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+      char chunk[65536];
+      boost::system::error_code ec;
+      const std::size_t n = socket_.read_some(boost::asio::buffer(chunk), ec);
+      if (ec) return std::nullopt;
+      buffer_.append(chunk, n);
+    }
+  }
+  // The response to request `id`; notifications that come first are kept in `notifications`.
+  json reply(const json& id) {
+    while (const auto m = next()) {
+      if (m->contains("id") && (*m)["id"] == id) return *m;
+      notifications.push_back(*m);
+    }
+    throw std::runtime_error("no reply to request " + id.dump());
+  }
+  json call(const std::string& method, const json& params) {
+    const json id = next_id_++;
+    send(json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}}.dump());
+    return reply(id);
+  }
+  std::vector<json> notifications;
+
+ private:
+  boost::asio::io_context io_;
+  boost::asio::ip::tcp::socket socket_;
+  std::string buffer_;
+  int next_id_ = 1000;
+};
+
+// A three-frame run "demo", served: what proto/api.md's examples are written against.
+struct DemoRun {
+  testing::TempDir tmp;
+  Server server;
+  explicit DemoRun(int domain) {
+    const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2});
+    server = start_server(tmp.path() / "data", domain, tmp.path() / "server.log");
+    auto pub = publish(run_dir, "demo", domain, tmp.path() / "publish.log");
+    EXPECT_EQ(pub->wait(120s), 0);
+    wait_for_frames(server.port, "demo", 3);
+  }
+};
+
+void expect_invalid_param(const json& reply, const std::string& parameter, const std::string& what) {
+  SCOPED_TRACE(what + ": " + reply.dump());
+  ASSERT_TRUE(reply.contains("error"));
+  EXPECT_EQ(reply["error"]["code"], -32602);
+  const std::string message = reply["error"]["message"];
+  EXPECT_NE(message.find("'" + parameter + "'"), std::string::npos) << "the message does not name " << parameter;
+  EXPECT_EQ(message.find("json.exception"), std::string::npos) << "raw JSON-library text";
+  EXPECT_EQ(reply["error"]["data"]["parameter"], parameter);
+}
+
+TEST(Service, ApiRejectsUnknownParametersBadRangesAndTypesNamingThem) {
+  DemoRun demo(54);
+  LineConnection c(demo.server.port);
+  // A typo is not a silently applied default.
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "bottleneck"}, {"dimension", 1}}), "dimension",
+                       "typo");
+  expect_invalid_param(c.call("runs.list", {{"verbose", true}}), "verbose", "a method that takes no params");
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "bottleneck"}, {"from", 2}, {"to", 1}}),
+                       "from", "from > to");
+  EXPECT_EQ(
+      c.call("series.get", {{"run", "demo"}, {"metric", "bottleneck"}, {"from", 1}, {"to", 1}})["result"]["frame"],
+      json({1}));
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "bottleneck"}, {"q", 3}}), "q",
+                       "bottleneck is q = infinity");
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "wasserstein2"}, {"q", 3}}), "q",
+                       "q contradicts the metric");
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "wasserstein"}, {"q", 0.5}}), "q", "q < 1");
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "manhattan"}}), "metric", "unknown metric");
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}}), "metric", "missing metric");
+  // 2^32 once read as an int was dim 0.
+  expect_invalid_param(c.call("series.get", {{"run", "demo"}, {"metric", "bottleneck"}, {"dim", 4294967296LL}}), "dim",
+                       "dim 2^32");
+  // Every wrong type is named, with the type expected, never with the JSON library's words.
+  const std::vector<std::tuple<std::string, json, std::string>> wrong = {
+      {"series.get", {{"metric", 42}}, "metric"},
+      {"series.get", {{"metric", "wasserstein"}, {"q", "2"}}, "q"},
+      {"series.get", {{"metric", "bottleneck"}, {"dim", "1"}}, "dim"},
+      {"series.get", {{"metric", "bottleneck"}, {"dim", 0.5}}, "dim"},
+      {"series.get", {{"metric", "bottleneck"}, {"force", 1}}, "force"},
+      {"series.get", {{"metric", "bottleneck"}, {"force", "shear"}}, "force"},
+      {"series.get", {{"metric", "bottleneck"}, {"essential", "maybe"}}, "essential"},
+      {"series.get", {{"metric", "bottleneck"}, {"from", -1}}, "from"},
+      {"series.get", {{"metric", "bottleneck"}, {"to", 1.5}}, "to"},
+      {"series.get", {{"metric", "bottleneck"}, {"run", 7}}, "run"},
+      {"diagram.get", {{"frame", "x"}}, "frame"},
+      {"diagram.get", {{"frame", 18446744073709551615ULL}}, "frame"},
+      {"diagram.get", {{"frame", {1}}}, "frame"},
+      {"distance.get", {{"frame", 0}, {"metric", "bottleneck"}}, "other_frame"},
+      {"distance.get", {{"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}, {"delta", -1}}, "delta"},
+      {"distance.get", {{"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}, {"delta", "0"}}, "delta"},
+      {"series.subscribe", {{"since", true}}, "since"},
+      {"series.unsubscribe", json::object(), "subscription"},
+      {"series.unsubscribe", {{"subscription", 99}}, "subscription"},
+  };
+  for (const auto& [method, params, parameter] : wrong)
+    expect_invalid_param(c.call(method, params), parameter, method + " " + params.dump());
+  // A line that is not JSON: the byte, not the library's message.
+  c.send("{not json");
+  const auto parse = c.next();
+  ASSERT_TRUE(parse);
+  EXPECT_EQ((*parse)["error"]["code"], -32700);
+  EXPECT_EQ((*parse)["error"]["message"].get<std::string>().find("json.exception"), std::string::npos) << *parse;
+  // Every unknown run is named in data.run, whichever method met it.
+  const std::vector<std::pair<std::string, json>> unknown = {
+      {"run.get", {{"run", "nope"}}},
+      {"series.get", {{"run", "nope"}, {"metric", "bottleneck"}}},
+      {"diagram.get", {{"run", "nope"}, {"frame", 0}}},
+      {"distance.get",
+       {{"run", "demo"}, {"other_run", "nope"}, {"frame", 0}, {"other_frame", 0}, {"metric", "bottleneck"}}},
+      {"series.subscribe", {{"run", "nope"}}},
+  };
+  for (const auto& [method, params] : unknown) {
+    const json reply = c.call(method, params);
+    EXPECT_EQ(reply["error"]["code"], -32001) << method << " " << reply;
+    EXPECT_EQ(reply["error"]["data"]["run"], "nope") << method << " " << reply;
+  }
+  const json frame =
+      c.call("distance.get", {{"run", "demo"}, {"frame", 0}, {"other_frame", 9}, {"metric", "bottleneck"}});
+  EXPECT_EQ(frame["error"]["code"], -32002) << frame;
+  EXPECT_EQ(frame["error"]["data"], json({{"run", "demo"}, {"frame", 9}})) << frame;
+}
+
+// Where `got` differs in shape from `doc` (same keys, same JSON types; each element of an array
+// shaped as some element of the document's), or nullopt.
+std::optional<std::string> shape_difference(const json& doc, const json& got, const std::string& path) {
+  const auto kind = [](const json& v) { return v.is_number() ? std::string("number") : std::string(v.type_name()); };
+  if (kind(doc) != kind(got)) return path + ": " + kind(got) + " where the document has " + kind(doc);
+  if (doc.is_object()) {
+    for (const auto& [key, value] : doc.items())
+      if (!got.contains(key)) return path + ": no '" + key + "'";
+    for (const auto& [key, value] : got.items()) {
+      if (!doc.contains(key)) return path + ": '" + key + "' is not in the document";
+      if (auto d = shape_difference(doc[key], value, path + "." + key)) return d;
+    }
+  }
+  if (doc.is_array() && !doc.empty()) {
+    if (got.empty()) return path + ": empty where the document has elements";
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      std::optional<std::string> first;
+      bool matched = false;
+      for (const json& d : doc) {
+        auto diff = shape_difference(d, got[k], path + "[" + std::to_string(k) + "]");
+        if (!diff) matched = true;
+        if (!first) first = diff;
+      }
+      if (!matched) return first;
+    }
+  }
+  return std::nullopt;
+}
+
+// proto/api.md is the API's contract: each method's Params line lists exactly what the server
+// accepts, and each example ("→" request, "←" replies) gives replies of the shapes it shows.
+TEST(Service, ApiDocumentListsWhatTheServerAcceptsAndItsExamplesRun) {
+  DemoRun demo(55);
+  const std::string doc = read_file(fs::path(FNET_SOURCE_DIR) / "proto" / "api.md");
+  LineConnection c(demo.server.port);
+
+  // Params: every documented method exists and accepts exactly the names its section lists.
+  // (Split by hand: std::regex recurses per character and would overflow on a long section.)
+  std::size_t methods = 0;
+  const std::string heading = "\n### `";
+  for (std::size_t at = doc.find(heading); at != std::string::npos;) {
+    const std::size_t name_end = doc.find('`', at + heading.size());
+    const std::string method = doc.substr(at + heading.size(), name_end - at - heading.size());
+    const std::size_t next = doc.find("\n#", name_end);
+    const std::string body = doc.substr(name_end, next == std::string::npos ? std::string::npos : next - name_end);
+    at = doc.find(heading, name_end);
+    const auto start = body.find("Params:"), end = body.find("Result:");
+    ASSERT_NE(start, std::string::npos) << method << " has no Params";
+    ASSERT_NE(end, std::string::npos) << method << " has no Result";
+    const std::string params = body.substr(start, end - start);
+    std::set<std::string> documented;
+    const std::regex name("`([a-z_]+)`");
+    for (auto n = std::sregex_iterator(params.begin(), params.end(), name); n != std::sregex_iterator(); ++n)
+      documented.insert((*n)[1]);
+    const json reply = c.call(method, {{"no_such_parameter", 1}});
+    ASSERT_TRUE(reply.contains("error")) << method << ": " << reply;
+    ASSERT_EQ(reply["error"]["code"], -32602) << method << ": " << reply;
+    const std::vector<std::string> accepted = reply["error"]["data"]["accepted"];
+    EXPECT_EQ(documented, std::set<std::string>(accepted.begin(), accepted.end())) << method;
+    ++methods;
+  }
+  EXPECT_EQ(methods, 8u) << "methods documented";
+
+  // Examples: sent in order on one connection (a subscription and its unsubscription share it).
+  std::istringstream lines(doc);
+  std::vector<std::pair<std::string, std::vector<json>>> examples;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("→ ", 0) == 0) examples.push_back({line.substr(std::string("→ ").size()), {}});
+    if (line.rfind("← ", 0) == 0) {
+      ASSERT_FALSE(examples.empty()) << line;
+      examples.back().second.push_back(json::parse(line.substr(std::string("← ").size())));
+    }
+  }
+  ASSERT_GE(examples.size(), 8u);
+  for (const auto& [request, expected] : examples) {
+    SCOPED_TRACE(request);
+    ASSERT_FALSE(expected.empty()) << "an example without its reply";
+    const json id = json::parse(request)["id"];
+    c.notifications.clear();
+    c.send(request);
+    const json reply = c.reply(id);
+    for (const json& e : expected) {
+      if (e.contains("id")) {
+        if (auto d = shape_difference(e, reply, "reply")) ADD_FAILURE() << *d << "\n  got " << reply;
+        if (e.contains("error")) {
+          EXPECT_EQ(reply["error"]["code"], e["error"]["code"]);
+        }
+        continue;
+      }
+      // A notification: it may come before or after the reply.
+      while (std::none_of(c.notifications.begin(), c.notifications.end(),
+                          [&](const json& n) { return n["method"] == e["method"]; })) {
+        const auto n = c.next(10s);
+        ASSERT_TRUE(n) << "no " << e["method"] << " notification";
+        c.notifications.push_back(*n);
+      }
+      for (const json& n : c.notifications)
+        if (n["method"] == e["method"]) {
+          if (auto d = shape_difference(e, n, "notification")) ADD_FAILURE() << *d << "\n  got " << n;
+        }
+    }
+  }
 }
 
 }  // namespace
