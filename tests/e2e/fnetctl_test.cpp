@@ -168,7 +168,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 TEST_F(Fnetctl, QueryCsvRoundTripsTheServedDoublesBitForBit) {
   store_run("stored", 3);
-  start_server(51);
+  start_server(61);
   const Outcome o = ctl({"query", "--run", "stored", "--metric", "wasserstein2", "--dim", "1", "--format", "csv"});
   ASSERT_EQ(o.code, 0) << o.err;
   const json served = call("series.get", {{"run", "stored"}, {"metric", "wasserstein2"}, {"dim", 1}});
@@ -202,7 +202,7 @@ TEST_F(Fnetctl, QueryCsvRoundTripsTheServedDoublesBitForBit) {
 
 TEST_F(Fnetctl, DiagramCsvRoundTripsTheServedPoints) {
   store_run("stored", 1);
-  start_server(52);
+  start_server(62);
   const Outcome o = ctl({"diagram", "--run", "stored", "--frame", "0", "--format", "csv"});
   ASSERT_EQ(o.code, 0) << o.err;
   const json served = call("diagram.get", {{"run", "stored"}, {"frame", 0}, {"dim", 0}});
@@ -222,7 +222,7 @@ TEST_F(Fnetctl, DiagramCsvRoundTripsTheServedPoints) {
 
 TEST_F(Fnetctl, InfiniteDistancesPrintAsInfNotAsNoPreviousFrame) {
   store_run("stored", 4);
-  start_server(53);
+  start_server(63);
   const json served =
       call("series.get", {{"run", "stored"}, {"metric", "bottleneck"}, {"dim", 0}, {"essential", "separate"}});
   ASSERT_TRUE(served.contains("infinite")) << "the frames must change their number of never-dying classes";
@@ -259,7 +259,7 @@ TEST_F(Fnetctl, InfiniteDistancesPrintAsInfNotAsNoPreviousFrame) {
 
 TEST_F(Fnetctl, DiagramJsonIsTheDocumentFnetAnalyzeDistanceReads) {
   store_run("stored", 2);
-  start_server(54);
+  start_server(64);
   for (const char* frame : {"0", "1"}) {
     const Outcome o =
         ctl({"diagram", "--run", "stored", "--frame", frame, "--force", "tangential", "--format", "json"});
@@ -285,7 +285,7 @@ TEST_F(Fnetctl, DiagramJsonIsTheDocumentFnetAnalyzeDistanceReads) {
 
 TEST_F(Fnetctl, BadValuesAreUsageErrorsNamingTheFlag) {
   store_run("stored", 2);
-  start_server(55);
+  start_server(65);
   const auto usage_error = [&](std::vector<std::string> args, const std::string& flag) {
     const Outcome o = ctl(args);
     EXPECT_EQ(o.code, 2) << ::testing::PrintToString(args) << "\n" << o.out << o.err;
@@ -312,7 +312,7 @@ TEST_F(Fnetctl, BadValuesAreUsageErrorsNamingTheFlag) {
 
 TEST_F(Fnetctl, GlobalOptionsWorkAnywhereAndComeFromTheEnvironment) {
   store_run("stored", 1);
-  start_server(56);
+  start_server(66);
   const std::string port = std::to_string(this->port());
   // After the command.
   Outcome o = run(FNETCTL, {"runs", "--port", port});
@@ -340,7 +340,7 @@ TEST_F(Fnetctl, GlobalOptionsWorkAnywhereAndComeFromTheEnvironment) {
 
 TEST_F(Fnetctl, RunsAreListedNewestActivityLast) {
   store_run("zz-stored", 1);  // loaded at start; sorts last by name, first by activity
-  start_server(57);
+  start_server(67);
   std::this_thread::sleep_for(2s);  // the stored run's last activity is its loading
   auto pub = publish("aa-live", 2);
   EXPECT_EQ(pub->wait(120s), 0);
@@ -389,7 +389,7 @@ bool restores_the_screen(const std::string& out) {
 }
 
 TEST_F(Fnetctl, WatchWaitsForTheRunMarksItCompleteAndRestoresTheScreen) {
-  start_server(58);
+  start_server(68);
   Process watch(FNETCTL, {"--port", std::to_string(port()), "watch", "--run", "late", "--until-complete"},
                 scratch() / "watch.log");
   EXPECT_FALSE(watch.wait(3s)) << "watch gave up before the run existed";
@@ -407,7 +407,7 @@ TEST_F(Fnetctl, WatchWaitsForTheRunMarksItCompleteAndRestoresTheScreen) {
 
 TEST_F(Fnetctl, WatchLeavesTheAlternateScreenOnCtrlC) {
   store_run("stored", 2);
-  start_server(59);
+  start_server(69);
   Process watch(FNETCTL, {"--port", std::to_string(port()), "watch", "--run", "stored"}, scratch() / "watch.log");
   // The stored run is drawn once both of its frames arrived.
   std::string seen;
