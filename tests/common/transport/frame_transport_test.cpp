@@ -14,6 +14,7 @@
 
 #include "fnet.h"
 #include "tests/support/run_frame_compare.hpp"
+#include "tests/support/run_info_sample.hpp"
 
 namespace fnet {
 namespace {
@@ -151,6 +152,37 @@ TEST(FrameTransport, LateSubscriberGetsEveryFrameOfEveryRun) {
     ASSERT_EQ(f.header.index, expected) << f.header.run_id;
     expect_bit_exact(make_frame(f.header.run_id, expected, 500, 900), f);
   }
+}
+
+TEST(FrameTransport, RunInfoCarriesEveryField) {
+  use_domain(14);
+  const RunInfo sample = testing::distinct_run_info();
+  Publisher pub([&](dds::FramePublisher& p) { p.publish(sample); });
+  pub.wait_done();
+  dds::FrameSubscriber sub(Publisher::domain());
+  std::vector<RunInfo> infos;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (infos.empty() && std::chrono::steady_clock::now() < deadline)
+    for (RunInfo& i : sub.take(DDS_MSECS(200)).infos) infos.push_back(std::move(i));
+  EXPECT_EQ(pub.finish(), 0);
+  ASSERT_EQ(infos.size(), 1u);
+  testing::expect_same_fields(sample, infos[0]);
+}
+
+TEST(FrameTransport, OverlongRunInfoStringIsRefusedByName) {
+  use_domain(15);
+  Publisher pub([](dds::FramePublisher& p) {
+    RunInfo info = testing::distinct_run_info();
+    info.config_json.assign(4097, 'x');
+    try {
+      p.publish(info);
+    } catch (const std::invalid_argument& e) {
+      if (std::string(e.what()) == "config_json longer than 4096 bytes") return;
+      throw std::runtime_error(std::string("wrong message: ") + e.what());
+    }
+    throw std::runtime_error("published a config_json of 4097 bytes");
+  });
+  EXPECT_EQ(pub.finish(), 0);
 }
 
 TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {
