@@ -59,8 +59,9 @@ struct RunInfoField {
 // The one list of RunInfo's fields, which every codec walks (DDS both ways, the run file, JSON):
 // calls f(field, records.member...) for each field. Generic in the records because the DDS codec
 // walks the generated C struct, whose members have RunInfo's names, alongside a RunInfo: a field
-// the IDL lacks does not compile. The order is the order in which run files have always had their
-// attributes written, so that files stay the same byte for byte.
+// the IDL lacks does not compile, and one only the IDL has fails a transport test. The order is
+// the order in which run files have always had their attributes written, so that files stay the
+// same byte for byte.
 template <class F, class... Records>
 constexpr void for_each_run_info_field(F&& f, Records&... r) {
   f(RunInfoField{"run_id", "run_id", "run", "the run's id (the DDS key)"}, r.run_id...);

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <map>
 #include <random>
+#include <set>
 #include <sys/wait.h>
 #include <thread>
 
@@ -167,6 +168,30 @@ TEST(FrameTransport, RunInfoCarriesEveryField) {
   EXPECT_EQ(pub.finish(), 0);
   ASSERT_EQ(infos.size(), 1u);
   testing::expect_same_fields(sample, infos[0]);
+}
+
+// The members of the wire type, read from the marshalling ops Cyclone generated from the IDL: a member
+// added to the IDL but not to the field list would travel as zero, and fails here instead.
+TEST(FrameTransport, RunInfoFieldListCoversEveryMemberOfTheIdl) {
+  std::set<std::uint32_t> wire;  // member offsets
+  const std::uint32_t* ops = fnet_RunInfo_desc.m_ops;
+  for (std::size_t k = 0; DDS_OP(ops[k]) != DDS_OP_RTS;) {
+    ASSERT_EQ(DDS_OP(ops[k]), DDS_OP_ADR) << "op word " << k;
+    const int type = DDS_OP_TYPE(ops[k]);
+    ASSERT_TRUE(type == DDS_OP_VAL_4BY || type == DDS_OP_VAL_8BY || type == DDS_OP_VAL_BST)
+        << "member of type code " << type << " at op word " << k << ": teach this test how long its op is";
+    wire.insert(ops[k + 1]);
+    k += type == DDS_OP_VAL_BST ? 3 : 2;  // op, offset[, bound]
+  }
+  fnet_RunInfo sample{};
+  std::set<std::uint32_t> listed;
+  for_each_run_info_field(
+      [&](const RunInfoField&, const auto& member) {
+        listed.insert(static_cast<std::uint32_t>(reinterpret_cast<const char*>(&member) -
+                                                 reinterpret_cast<const char*>(&sample)));
+      },
+      sample);
+  EXPECT_EQ(listed, wire);
 }
 
 TEST(FrameTransport, OverlongRunInfoStringIsRefusedByName) {
