@@ -1,45 +1,50 @@
 #include "common/codec/run_info_json.hpp"
 
+#include <type_traits>
+
 namespace fnet {
 
-nlohmann::json to_json(const RunInfo& i) {
-  nlohmann::json config = nlohmann::json::parse(i.config_json, nullptr, false);
-  return {{"run", i.run_id},
-          {"particles", i.particles},
-          {"polydispersity", i.polydispersity},
-          {"friction", i.friction},
-          {"k_n", i.k_n},
-          {"restitution", i.restitution},
-          {"kt_over_kn", i.kt_over_kn},
-          {"compression_speed", i.compression_speed},
-          {"dt", i.dt},
-          {"final_density", i.final_density},
-          {"frames", i.frames},
-          {"seed", i.seed},
-          {"config", config.is_discarded() ? nlohmann::json(i.config_json) : config}};
+nlohmann::json to_json(const RunInfo& info, JsonText text) {
+  nlohmann::json out = nlohmann::json::object();
+  for_each_run_info_field(
+      [&](const RunInfoField& field, const auto& value) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::string>) {
+          if (field.json_text) {
+            if (text == JsonText::verbatim) {
+              out[field.name] = value;
+            } else {  // text that does not parse is served as it is, a string
+              nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+              out[field.key] = parsed.is_discarded() ? nlohmann::json(value) : std::move(parsed);
+            }
+            return;
+          }
+        }
+        out[field.key] = value;
+      },
+      info);
+  return out;
 }
 
 RunInfo run_info_from_json(const nlohmann::json& v) {
-  RunInfo i;
-  i.run_id = v.at("run").get<std::string>();
-  i.particles = v.at("particles").get<std::uint32_t>();
-  i.polydispersity = v.at("polydispersity").get<double>();
-  i.friction = v.at("friction").get<double>();
-  i.k_n = v.at("k_n").get<double>();
-  i.restitution = v.at("restitution").get<double>();
-  i.kt_over_kn = v.at("kt_over_kn").get<double>();
-  i.compression_speed = v.at("compression_speed").get<double>();
-  i.dt = v.at("dt").get<double>();
-  i.final_density = v.at("final_density").get<double>();
-  i.frames = v.at("frames").get<std::uint32_t>();
-  i.seed = v.at("seed").get<std::uint64_t>();
-  if (v.contains("config_json")) {  // the verbatim text, as the store keeps it
-    i.config_json = v.at("config_json").get<std::string>();
-  } else {
-    const nlohmann::json& config = v.at("config");
-    i.config_json = config.is_string() ? config.get<std::string>() : config.dump();
-  }
-  return i;
+  RunInfo info;
+  for_each_run_info_field(
+      [&](const RunInfoField& field, auto& value) {
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::string>) {
+          if (field.json_text) {
+            if (v.contains(field.name)) {
+              value = v.at(field.name).get<std::string>();
+            } else {
+              const nlohmann::json& parsed = v.at(field.key);
+              value = parsed.is_string() ? parsed.get<std::string>() : parsed.dump();
+            }
+            return;
+          }
+        }
+        value = v.at(field.key).get<T>();
+      },
+      info);
+  return info;
 }
 
 }  // namespace fnet

@@ -7,10 +7,16 @@
 
 namespace fnet {
 
-// {"run", "particles", "polydispersity", ..., "seed", "config": <config_json parsed, or the raw text>}
-nlohmann::json to_json(const RunInfo& info);
-// Inverse of to_json (also accepts the verbatim "config_json" text instead of "config"); throws
-// nlohmann::json::exception on a missing or mistyped field.
+// How a field holding JSON text (config_json) is written: `parsed` under its key ("config": the
+// parameters as a JSON value, or the raw text as a string if it does not parse), as the API serves
+// it; `verbatim` under its member name ("config_json": the text itself), as the analysis store
+// records it, so that it reads back unchanged.
+enum class JsonText { parsed, verbatim };
+
+// {"run", "particles", "polydispersity", ..., "seed", "config"}: one key per field of
+// for_each_run_info_field.
+nlohmann::json to_json(const RunInfo& info, JsonText text = JsonText::parsed);
+// Inverse of to_json in either form; throws nlohmann::json::exception on a missing or mistyped field.
 RunInfo run_info_from_json(const nlohmann::json& value);
 
 }  // namespace fnet

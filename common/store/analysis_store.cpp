@@ -141,10 +141,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
 hid_t StoreWriter::set(const char* name) const { return sets_.at(name).get(); }
 
 void StoreWriter::write_info(const RunInfo& info, StoreTime at) {
-  nlohmann::json record = to_json(info);
-  record.erase("config");
-  record["config_json"] = info.config_json;
-  const std::string text = record.dump();
+  const std::string text = to_json(info, JsonText::verbatim).dump();
   if (text.size() > kInfoBytes)
     throw h5::Error("run announcement longer than " + std::to_string(kInfoBytes) + " bytes");
   const auto row = padded(text, kInfoBytes);

@@ -22,6 +22,19 @@ double read_double(hid_t obj, const char* name, const std::string& where);
 std::uint32_t read_uint32(hid_t obj, const char* name, const std::string& where);
 std::uint64_t read_uint64(hid_t obj, const char* name, const std::string& where);
 std::string read_string(hid_t obj, const char* name, const std::string& where);
+// The reader for the type of `out`, for code generic in the attribute's type.
+inline void read_attribute(hid_t obj, const char* name, const std::string& where, double& out) {
+  out = read_double(obj, name, where);
+}
+inline void read_attribute(hid_t obj, const char* name, const std::string& where, std::uint32_t& out) {
+  out = read_uint32(obj, name, where);
+}
+inline void read_attribute(hid_t obj, const char* name, const std::string& where, std::uint64_t& out) {
+  out = read_uint64(obj, name, where);
+}
+inline void read_attribute(hid_t obj, const char* name, const std::string& where, std::string& out) {
+  out = read_string(obj, name, where);
+}
 
 // rows x cols (cols == 0: a 1-D array of rows); zero rows are allowed.
 void write_array(hid_t group, const char* name, const std::vector<double>& data, std::size_t rows, std::size_t cols);

@@ -28,37 +28,16 @@ h5::PropertyList latest_format() {
 }  // namespace
 
 void write_run_info(hid_t root, const RunInfo& info) {
-  h5::write_attribute(root, "run_id", info.run_id);
-  h5::write_attribute(root, "config_json", info.config_json);
-  h5::write_attribute(root, "particles", info.particles);
-  h5::write_attribute(root, "polydispersity", info.polydispersity);
-  h5::write_attribute(root, "friction", info.friction);
-  h5::write_attribute(root, "k_n", info.k_n);
-  h5::write_attribute(root, "restitution", info.restitution);
-  h5::write_attribute(root, "kt_over_kn", info.kt_over_kn);
-  h5::write_attribute(root, "compression_speed", info.compression_speed);
-  h5::write_attribute(root, "dt", info.dt);
-  h5::write_attribute(root, "final_density", info.final_density);
-  h5::write_attribute(root, "frames_planned", info.frames);
-  h5::write_attribute(root, "seed", info.seed);
+  for_each_run_info_field(
+      [root](const RunInfoField& field, const auto& value) { h5::write_attribute(root, field.attribute, value); },
+      info);
 }
 
 RunInfo read_run_info(hid_t root, const std::string& where) {
-  RunInfo i;
-  i.run_id = h5::read_string(root, "run_id", where);
-  i.config_json = h5::read_string(root, "config_json", where);
-  i.particles = h5::read_uint32(root, "particles", where);
-  i.polydispersity = h5::read_double(root, "polydispersity", where);
-  i.friction = h5::read_double(root, "friction", where);
-  i.k_n = h5::read_double(root, "k_n", where);
-  i.restitution = h5::read_double(root, "restitution", where);
-  i.kt_over_kn = h5::read_double(root, "kt_over_kn", where);
-  i.compression_speed = h5::read_double(root, "compression_speed", where);
-  i.dt = h5::read_double(root, "dt", where);
-  i.final_density = h5::read_double(root, "final_density", where);
-  i.frames = h5::read_uint32(root, "frames_planned", where);
-  i.seed = h5::read_uint64(root, "seed", where);
-  return i;
+  RunInfo info;
+  for_each_run_info_field(
+      [&](const RunInfoField& field, auto& value) { h5::read_attribute(root, field.attribute, where, value); }, info);
+  return info;
 }
 
 RunFileWriter::RunFileWriter(const std::filesystem::path& path, const RunInfo& info) { create(path, info); }

@@ -68,10 +68,29 @@ RunFrame decode(const fnet_ForceFrame& s) {
   return out;
 }
 
+// RunInfo <-> fnet_RunInfo, one field at a time: bounded strings are char arrays in the C struct, every
+// other field has the same type on both sides (no overload, no compilation, if the IDL's type differs).
+template <std::size_t N>
+void to_wire(const RunInfoField& field, const std::string& value, char (&wire)[N]) {
+  set_bounded(wire, N - 1, value, field.name);
+}
+template <class T>
+void to_wire(const RunInfoField&, const T& value, T& wire) {
+  wire = value;
+}
+template <std::size_t N>
+void from_wire(std::string& value, const char (&wire)[N]) {
+  value = wire;
+}
+template <class T>
+void from_wire(T& value, const T& wire) {
+  value = wire;
+}
+
 RunInfo decode(const fnet_RunInfo& s) {
-  return {s.run_id,      s.particles,  s.polydispersity,    s.friction, s.k_n,
-          s.restitution, s.kt_over_kn, s.compression_speed, s.dt,       s.final_density,
-          s.frames,      s.seed,       s.config_json};
+  RunInfo info;
+  for_each_run_info_field([](const RunInfoField&, auto& value, const auto& wire) { from_wire(value, wire); }, info, s);
+  return info;
 }
 
 // Takes everything available from `reader` as loans, decoding each valid sample.
@@ -117,19 +136,8 @@ FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blockin
 
 void FramePublisher::publish(const RunInfo& info) {
   fnet_RunInfo s{};
-  set_bounded(s.run_id, sizeof s.run_id - 1, info.run_id, "run_id");
-  set_bounded(s.config_json, sizeof s.config_json - 1, info.config_json, "config_json");
-  s.particles = info.particles;
-  s.polydispersity = info.polydispersity;
-  s.friction = info.friction;
-  s.k_n = info.k_n;
-  s.restitution = info.restitution;
-  s.kt_over_kn = info.kt_over_kn;
-  s.compression_speed = info.compression_speed;
-  s.dt = info.dt;
-  s.final_density = info.final_density;
-  s.frames = info.frames;
-  s.seed = info.seed;
+  for_each_run_info_field([](const RunInfoField& field, const auto& value, auto& wire) { to_wire(field, value, wire); },
+                          info, s);
   const dds_return_t rc = dds_write(info_writer_, &s);
   if (rc != DDS_RETCODE_OK) throw Error("dds_write(RunInfo)", rc);
 }

@@ -8,21 +8,20 @@
 namespace fnet::sim {
 
 RunInfo run_info(const Params& p, const std::string& run_id) {
-  RunInfo info;
-  info.run_id = run_id;
-  info.particles = static_cast<std::uint32_t>(p.particles);
-  info.polydispersity = p.polydispersity;
-  info.friction = p.mu;
-  info.k_n = p.kn;
-  info.restitution = p.en;
-  info.kt_over_kn = p.kt_ratio;
-  info.compression_speed = p.compression_speed;
-  info.dt = derive(p).dt;
-  info.final_density = p.rho_final;
-  info.frames = static_cast<std::uint32_t>(p.frames);
-  info.seed = p.seed;
-  info.config_json = to_json(p).dump();
-  return info;
+  // Designated, so that the compiler checks the order; a field left out fails sim.OutputSinks.
+  return {.run_id = run_id,
+          .particles = static_cast<std::uint32_t>(p.particles),
+          .polydispersity = p.polydispersity,
+          .friction = p.mu,
+          .k_n = p.kn,
+          .restitution = p.en,
+          .kt_over_kn = p.kt_ratio,
+          .compression_speed = p.compression_speed,
+          .dt = derive(p).dt,
+          .final_density = p.rho_final,
+          .frames = static_cast<std::uint32_t>(p.frames),
+          .seed = p.seed,
+          .config_json = to_json(p).dump()};
 }
 
 RunFrame run_frame(const FrameSnapshot& s) {

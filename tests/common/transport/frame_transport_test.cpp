@@ -7,6 +7,7 @@
 #include <csignal>
 #include <map>
 #include <random>
+#include <set>
 #include <sys/wait.h>
 #include <thread>
 
@@ -14,6 +15,7 @@
 
 #include "fnet.h"
 #include "tests/support/run_frame_compare.hpp"
+#include "tests/support/run_info_sample.hpp"
 
 namespace fnet {
 namespace {
@@ -151,6 +153,61 @@ TEST(FrameTransport, LateSubscriberGetsEveryFrameOfEveryRun) {
     ASSERT_EQ(f.header.index, expected) << f.header.run_id;
     expect_bit_exact(make_frame(f.header.run_id, expected, 500, 900), f);
   }
+}
+
+TEST(FrameTransport, RunInfoCarriesEveryField) {
+  use_domain(14);
+  const RunInfo sample = testing::distinct_run_info();
+  Publisher pub([&](dds::FramePublisher& p) { p.publish(sample); });
+  pub.wait_done();
+  dds::FrameSubscriber sub(Publisher::domain());
+  std::vector<RunInfo> infos;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (infos.empty() && std::chrono::steady_clock::now() < deadline)
+    for (RunInfo& i : sub.take(DDS_MSECS(200)).infos) infos.push_back(std::move(i));
+  EXPECT_EQ(pub.finish(), 0);
+  ASSERT_EQ(infos.size(), 1u);
+  testing::expect_same_fields(sample, infos[0]);
+}
+
+// The members of the wire type, read from the marshalling ops Cyclone generated from the IDL: a member
+// added to the IDL but not to the field list would travel as zero, and fails here instead.
+TEST(FrameTransport, RunInfoFieldListCoversEveryMemberOfTheIdl) {
+  std::set<std::uint32_t> wire;  // member offsets
+  const std::uint32_t* ops = fnet_RunInfo_desc.m_ops;
+  for (std::size_t k = 0; DDS_OP(ops[k]) != DDS_OP_RTS;) {
+    ASSERT_EQ(DDS_OP(ops[k]), DDS_OP_ADR) << "op word " << k;
+    const int type = DDS_OP_TYPE(ops[k]);
+    ASSERT_TRUE(type == DDS_OP_VAL_4BY || type == DDS_OP_VAL_8BY || type == DDS_OP_VAL_BST)
+        << "member of type code " << type << " at op word " << k << ": teach this test how long its op is";
+    wire.insert(ops[k + 1]);
+    k += type == DDS_OP_VAL_BST ? 3 : 2;  // op, offset[, bound]
+  }
+  fnet_RunInfo sample{};
+  std::set<std::uint32_t> listed;
+  for_each_run_info_field(
+      [&](const RunInfoField&, const auto& member) {
+        listed.insert(static_cast<std::uint32_t>(reinterpret_cast<const char*>(&member) -
+                                                 reinterpret_cast<const char*>(&sample)));
+      },
+      sample);
+  EXPECT_EQ(listed, wire);
+}
+
+TEST(FrameTransport, OverlongRunInfoStringIsRefusedByName) {
+  use_domain(15);
+  Publisher pub([](dds::FramePublisher& p) {
+    RunInfo info = testing::distinct_run_info();
+    info.config_json.assign(4097, 'x');
+    try {
+      p.publish(info);
+    } catch (const std::invalid_argument& e) {
+      if (std::string(e.what()) == "config_json longer than 4096 bytes") return;
+      throw std::runtime_error(std::string("wrong message: ") + e.what());
+    }
+    throw std::runtime_error("published a config_json of 4097 bytes");
+  });
+  EXPECT_EQ(pub.finish(), 0);
 }
 
 TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {

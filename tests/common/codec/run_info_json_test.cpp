@@ -1,0 +1,60 @@
+// The run announcement as JSON: both forms round-trip every field, and the keys are the ones
+// proto/api.md lists for run.get.
+#include "common/codec/run_info_json.hpp"
+
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/doc_names.hpp"
+#include "tests/support/run_info_sample.hpp"
+
+namespace fnet {
+namespace {
+
+TEST(RunInfoJson, ParsedFormRoundTripsEveryField) {
+  const RunInfo sample = testing::distinct_run_info();
+  const nlohmann::json json = to_json(sample);
+  ASSERT_TRUE(json.at("config").is_object()) << json.dump();
+  testing::expect_same_fields(sample, run_info_from_json(nlohmann::json::parse(json.dump())));
+}
+
+TEST(RunInfoJson, VerbatimFormRoundTripsEveryField) {
+  RunInfo sample = testing::distinct_run_info();
+  sample.config_json = "{ \"mu\" : 0.5 }";  // not canonical: only the verbatim form keeps the spaces
+  const nlohmann::json json = to_json(sample, JsonText::verbatim);
+  EXPECT_FALSE(json.contains("config"));
+  testing::expect_same_fields(sample, run_info_from_json(nlohmann::json::parse(json.dump())));
+}
+
+TEST(RunInfoJson, ConfigThatIsNotJsonIsServedAsAString) {
+  RunInfo sample = testing::distinct_run_info();
+  sample.config_json = "mu = 0.5";
+  const nlohmann::json json = to_json(sample);
+  EXPECT_EQ(json.at("config"), "mu = 0.5");
+  testing::expect_same_fields(sample, run_info_from_json(json));
+}
+
+TEST(RunInfoJson, AMissingFieldIsNamed) {
+  nlohmann::json json = to_json(testing::distinct_run_info());
+  json.erase("kt_over_kn");
+  try {
+    run_info_from_json(json);
+    FAIL() << "read a run announcement without kt_over_kn";
+  } catch (const nlohmann::json::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("kt_over_kn"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RunInfoJson, KeysAreTheOnesTheApiDocumentLists) {
+  const std::string api = testing::read_text(std::string(FNET_SOURCE_DIR) + "/proto/api.md");
+  const std::set<std::string> documented = testing::backticked_between(api, "(the run announcement:", "or null");
+  std::set<std::string> keys;
+  const nlohmann::json json = to_json(testing::distinct_run_info());
+  for (const auto& [key, value] : json.items()) keys.insert(key);
+  EXPECT_EQ(keys, documented);
+}
+
+}  // namespace
+}  // namespace fnet
