@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/store/hdf5_io.hpp"
+#include "common/store/run_file_v1.hpp"
 
 namespace fnet {
 namespace {
@@ -135,12 +136,21 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw h5::Error(file + ": no such file");
   const h5::PropertyList fapl = latest_format();
-  // SWMR read opens a file whose writer is still running, or was killed.
-  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
-             "open " + file + " (not an HDF5 run file?)");
+  // SWMR read opens a file whose writer is still running, or was killed; a file of the first
+  // schema predates SWMR (its format cannot be opened so) and opens as a plain file.
+  hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get());
+  if (id < 0) id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  h5::File f(id, "open " + file + " (not an HDF5 run file?)");
+  std::string schema;
+  {
+    h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
+    schema = h5::read_string(root.get(), "schema", file);
+  }
+  if (schema == kRunFileSchemaV1) return read_run_file_v1(f.get(), file);
+  if (schema != kRunFileSchema)
+    throw h5::Error(file + ": schema '" + schema + "', expected '" + kRunFileSchema + "' (or the older '" +
+                    kRunFileSchemaV1 + "')");
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
-  const std::string schema = h5::read_string(root.get(), "schema", file);
-  if (schema != kRunFileSchema) throw h5::Error(file + ": schema '" + schema + "', expected '" + kRunFileSchema + "'");
   RunFileContents out;
   out.info = read_run_info(root.get(), file);
 

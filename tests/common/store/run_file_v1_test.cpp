@@ -1,0 +1,63 @@
+// Run files of the first schema (fnet-run-1, one group per frame) still load. The fixture in
+// tests/data/run-file-v1 was written by fnet-simd before the schema changed, together with its
+// CSV export of the same frames: both must give the same frames, bit for bit.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "common/codec/run_csv.hpp"
+#include "common/store/run_file.hpp"
+#include "tests/support/run_frame_compare.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fnet {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kFixture = fs::path(FNET_TEST_DATA) / "run-file-v1";
+
+void expect_same_frames(const std::vector<RunFrame>& want, const std::vector<RunFrame>& got) {
+  ASSERT_EQ(want.size(), got.size());
+  for (std::size_t k = 0; k < want.size(); ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    EXPECT_EQ(want[k].header, got[k].header);
+    ASSERT_EQ(want[k].frame.particles.size(), got[k].frame.particles.size());
+    ASSERT_EQ(want[k].frame.contacts.size(), got[k].frame.contacts.size());
+    for (std::size_t c = 0; c < want[k].frame.contacts.size(); ++c) {
+      const Contact &a = want[k].frame.contacts[c], &b = got[k].frame.contacts[c];
+      ASSERT_TRUE(a.i == b.i && a.j == b.j && testing::same_bits(a.fn, b.fn) && testing::same_bits(a.ft, b.ft))
+          << "contact " << c;
+    }
+    for (std::size_t p = 0; p < want[k].frame.particles.size(); ++p) {
+      const Particle &a = want[k].frame.particles[p], &b = got[k].frame.particles[p];
+      ASSERT_TRUE(testing::same_bits(a.x, b.x) && testing::same_bits(a.y, b.y) && testing::same_bits(a.r, b.r))
+          << "particle " << p;
+    }
+  }
+}
+
+TEST(RunFileV1, FramesEqualTheCsvExportOfTheSameRun) {
+  const RunFileContents run = read_run_file(kFixture / "legacy-v1.run.h5");
+  EXPECT_EQ(run.info.run_id, "legacy-v1");
+  EXPECT_EQ(run.info.particles, 60u);
+  EXPECT_EQ(run.info.frames, 3u);
+  EXPECT_EQ(run.info.seed, 7u);
+  ASSERT_EQ(run.frames.size(), 3u);
+  for (const RunFrame& f : run.frames) EXPECT_EQ(f.frame.particle_count, 60u);
+  expect_same_frames(read_csv_run(kFixture / "csv", "legacy-v1"), run.frames);
+}
+
+TEST(RunFileV1, ResumingConvertsItToTheCurrentSchemaKeepingTheEarlierFrames) {
+  testing::TempDir dir;
+  const fs::path path = dir.path() / "run.h5";
+  fs::copy_file(kFixture / "legacy-v1.run.h5", path);
+  const RunFileContents before = read_run_file(path);
+  { RunFileWriter writer = RunFileWriter::reopen(path, 2); }
+  const RunFileContents after = read_run_file(path);
+  EXPECT_EQ(before.info, after.info);
+  expect_same_frames({before.frames[0], before.frames[1]}, after.frames);
+}
+
+}  // namespace
+}  // namespace fnet
