@@ -223,7 +223,8 @@ json series_get(const Registry& registry, const json& params) {
 
   json out = describe(metric, dim, force, essential);
   out["run"] = run;
-  json frame = json::array(), rho = json::array(), z = json::array(), value = json::array(), previous = json::array();
+  json frame = json::array(), step = json::array(), time = json::array(), rho = json::array(), z = json::array(),
+       value = json::array(), previous = json::array();
   json infinite = json::array();
   bool any_infinite = false;
   std::shared_ptr<const AnalyzedFrame> before;  // the frame committed before the current one
@@ -233,6 +234,8 @@ json series_get(const Registry& registry, const json& params) {
     before = f;
     if ((from && index < *from) || (to && index > *to)) continue;
     frame.push_back(index);
+    step.push_back(f->header.step);
+    time.push_back(f->header.time);
     rho.push_back(f->header.rho);
     z.push_back(f->header.z);
     previous.push_back(f->previous ? json(*f->previous) : json(nullptr));
@@ -253,6 +256,8 @@ json series_get(const Registry& registry, const json& params) {
     any_infinite |= r.infinite;
   }
   out["frame"] = frame;
+  out["step"] = step;
+  out["time"] = time;
   out["rho"] = rho;
   out["z"] = z;
   out["value"] = value;

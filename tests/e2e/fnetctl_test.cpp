@@ -175,18 +175,21 @@ TEST_F(Fnetctl, QueryCsvRoundTripsTheServedDoublesBitForBit) {
   const auto rows = parse_csv(o.out);
   ASSERT_EQ(rows.size(), 1 + served["frame"].size()) << o.out;
   const std::vector<std::string>& header = rows[0];
-  for (const char* name : {"frame", "previous", "rho", "z", "value"})
+  for (const char* name : {"frame", "step", "time", "previous", "rho", "z", "value"})
     ASSERT_NE(std::find(header.begin(), header.end(), name), header.end()) << "no column " << name << ": " << o.out;
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
-  const std::size_t c_frame = column("frame"), c_previous = column("previous"), c_rho = column("rho"),
-                    c_z = column("z"), c_value = column("value");
+  const std::size_t c_frame = column("frame"), c_step = column("step"), c_time = column("time"),
+                    c_previous = column("previous"), c_rho = column("rho"), c_z = column("z"),
+                    c_value = column("value");
   EXPECT_EQ(std::count(header.begin(), header.end(), "Z"), 0) << "one name for Z: z";
   for (std::size_t k = 0; k < served["frame"].size(); ++k) {
     const std::vector<std::string>& row = rows[k + 1];
     ASSERT_EQ(row.size(), header.size()) << o.out;
     EXPECT_EQ(row[c_frame], served["frame"][k].dump());
+    EXPECT_EQ(row[c_step], served["step"][k].dump());
+    EXPECT_TRUE(same_bits(std::stod(row[c_time]), served["time"][k].get<double>())) << row[c_time];
     EXPECT_TRUE(same_bits(std::stod(row[c_rho]), served["rho"][k].get<double>())) << row[c_rho];
     EXPECT_TRUE(same_bits(std::stod(row[c_z]), served["z"][k].get<double>())) << row[c_z];
     if (served["value"][k].is_null()) {
