@@ -279,6 +279,10 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
     return kOk;
   }
   const json& f = s["frames"];
+  // The DDS ingest first: a server that still answers but no longer receives frames must not
+  // look healthy.
+  const std::string ingest = s.value("ingest", "unknown");
+  std::printf("ingest %s\n", ingest.c_str());
   std::printf("uptime %.0f s, %zu run(s), %zu connection(s), %zu subscription(s)\n", s["uptime_seconds"].get<double>(),
               s["runs"].size(), s["connections"].get<std::size_t>(), s["subscriptions"].get<std::size_t>());
   std::printf(
@@ -290,6 +294,10 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
               s["frames_per_second"].get<double>(), s["lag"]["frames_in_flight"].get<std::size_t>(),
               s["lag"]["oldest_pending_seconds"].get<double>());
   for (const json& reason : s["rejections"]) std::cout << "  rejected: " << reason.get<std::string>() << "\n";
+  if (ingest != "running") {
+    std::cerr << "fnetctl status: the server's DDS ingest is " << ingest << ": no new frames arrive\n";
+    return kServerError;
+  }
   return kOk;
 }
 

@@ -356,6 +356,13 @@ TEST_F(Fnetctl, RunsAreListedNewestActivityLast) {
   EXPECT_LT(first, second) << o.out;
 }
 
+TEST_F(Fnetctl, StatusShowsTheIngestStateFirst) {
+  start_server(70);
+  const Outcome o = ctl({"status"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.out.rfind("ingest running\n", 0), 0u) << o.out;
+}
+
 TEST_F(Fnetctl, HelpListsEveryDistanceOptionAndEveryExitCode) {
   const Outcome o = run(FNETCTL, {"--help"});
   ASSERT_EQ(o.code, 0);
