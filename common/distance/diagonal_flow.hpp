@@ -58,14 +58,43 @@ class DiagonalFlow {
   std::size_t boxes_opened() const { return boxes_opened_; }
 
  private:
+  // Nodes: a_0..a_{n-1}, then b_0..b_{m-1}, then the hubs HA and HB.
+  bool is_a(std::uint32_t v) const { return v < n_; }
+  bool is_b(std::uint32_t v) const { return v >= n_ && v < n_ + m_; }
+  std::uint32_t node_of_b(std::uint32_t j) const { return n_ + j; }
+  std::uint32_t b_of_node(std::uint32_t v) const { return v - n_; }
+
+  // Heap entries, ordered by (key, id): a node (its id), a hub's lazy arc stream (negative), or a
+  // tree box entered for a row (kBoxBase + its index in boxes_). At equal keys streams pop first,
+  // then nodes, then boxes: a sink found at the current distance ends the search before any box
+  // that cannot beat it is opened.
+  static constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
+  static constexpr int kStreamHa = 0, kStreamHb = 1;  // HA -> b_j (hub_a_), HB -> a_i (hub_b_)
+  static std::int64_t stream_entry(int stream) { return -1 - stream; }
+  static bool is_stream_entry(std::int64_t id) { return id < 0; }
+  static int stream_of_entry(std::int64_t id) { return static_cast<int>(-1 - id); }
+  static bool is_box_entry(std::int64_t id) { return id >= kBoxBase; }
+  void push(double key, std::int64_t id);
+  void push_box(std::uint32_t row, std::int32_t node, double key);
+
   // A shortest path from source to a sink, then augment; false when no sink is reachable.
   bool dijkstra(std::uint32_t source);
   void augment(std::uint32_t source, std::uint32_t target);
   void relax(std::uint32_t v, double d, std::uint32_t from, double cost);
   void scan(std::uint32_t u, double d);
-  void push_generator(int which);
+  // The hubs' arcs are offered lazily, in key order, as one heap entry per hub at a time.
+  using Arcs = std::set<std::pair<double, std::uint32_t>>;  // (key, index of a_i or b_j)
+  const Arcs& stream_arcs(int stream) const;
+  std::uint32_t stream_node(int stream, std::uint32_t index) const;
+  std::uint32_t stream_hub(int stream) const;
+  bool skip_settled(int stream);            // moves the cursor past settled heads; false at the end
+  void push_stream(int stream);             // files the stream's next arc in the heap
+  void start_stream(int stream, double d);  // the hub is settled at distance d
+  void pop_stream(int stream);              // relaxes the stream's next arc
   void refresh(std::uint32_t node);
   bool is_sink(std::uint32_t v) const;
+  // The q-th power of a distance: the cost of an arc of that length.
+  double power(double distance) const;
   double cost(std::uint32_t i, std::uint32_t j) const;
   double box_key(std::uint32_t i, std::int32_t node) const;
   void open_box(std::uint32_t i, std::int32_t node);
@@ -81,11 +110,11 @@ class DiagonalFlow {
 
   // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
   // to the diagonal, keyed -da_i - pi(a_i).
-  std::set<std::pair<double, std::uint32_t>> hub_a_, hub_b_;
+  Arcs hub_a_, hub_b_;
   std::vector<double> key_;  // the key a node is filed under, NaN if not filed
-  using Cursor = std::set<std::pair<double, std::uint32_t>>::const_iterator;
-  Cursor cursor_[2];
-  double hub_dist_[2] = {0, 0};
+  using Cursor = Arcs::const_iterator;
+  Cursor cursor_[2];             // per stream: the next arc to offer
+  double hub_dist_[2] = {0, 0};  // per stream: the distance of its hub
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
   // between refreshes), each node's parent and each point's leaf.
@@ -107,7 +136,7 @@ class DiagonalFlow {
     std::uint32_t row;
     std::int32_t node;
   };
-  std::vector<BoxEntry> boxes_;  // heap ids from kBoxBase on index this
+  std::vector<BoxEntry> boxes_;  // box heap entries index this
   double current_ = 0;           // key of the entry being processed
   std::int64_t early_ = -1;      // a sink relaxed at distance current_
 
