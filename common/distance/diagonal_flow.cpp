@@ -10,28 +10,40 @@ namespace fnet {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::vector<double> diagonal_costs(std::span<const PlanePoint> points, const ArcPower& power) {
+  std::vector<double> out;
+  out.reserve(points.size());
+  for (const PlanePoint p : points) out.push_back(power(std::fabs(p.x - p.y) / 2));
+  return out;
+}
 }  // namespace
 
-DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
-                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
-    : n_(static_cast<std::uint32_t>(diagonal_a.size())),
-      m_(static_cast<std::uint32_t>(diagonal_b.size())),
+ArcPower::ArcPower(double q, double unit) : q_(q), unit_(unit) {
+  if (!std::isfinite(q) || q < 1) throw std::invalid_argument("arc power: q must be finite and >= 1");
+  if (!std::isfinite(unit) || !(unit > 0)) throw std::invalid_argument("arc power: unit must be finite and > 0");
+  kind_ = unit != 1 ? Kind::general : q == 1 ? Kind::identity : q == 2 ? Kind::square : Kind::general;
+}
+
+DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power)
+    : n_(static_cast<std::uint32_t>(a.size())),
+      m_(static_cast<std::uint32_t>(b.size())),
       ha_(n_ + m_),
       hb_(n_ + m_ + 1),
-      da_(std::move(diagonal_a)),
-      db_(std::move(diagonal_b)),
+      da_(diagonal_costs(a, power)),
+      db_(diagonal_costs(b, power)),
       mate_a_(n_, kNone),
       mate_b_(m_, kNone),
       mate_cost_a_(n_, 0),
       pi_(n_ + m_ + 2, 0.0),
       key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()),
+      power_(power),
       dist_(n_ + m_ + 2, kInf),
       pred_cost_(n_ + m_ + 2, 0),
       pred_(n_ + m_ + 2, 0),
       seen_(n_ + m_ + 2, 0),
       final_(n_ + m_ + 2, 0) {
   for (std::uint32_t j = 0; j < m_; ++j) refresh(node_of_b(j));
-  q_ = q;
   pa_.assign(a.begin(), a.end());
   tree_b_ = std::make_unique<LinfKdTree>(b);
   const auto nodes = tree_b_->nodes();
@@ -104,7 +116,7 @@ void DiagonalFlow::greedy_start() {
     while (!stack.empty()) {
       const auto& node = nodes[stack.back()];
       stack.pop_back();
-      const double c = power(tree_a.box_distance(node, points_b[j]));
+      const double c = power_(tree_a.box_distance(node, points_b[j]));
       if (!(c + min_pi[&node - nodes.data()] < best)) continue;
       if (node.left >= 0) {
         stack.push_back(node.left), stack.push_back(node.right);
@@ -149,22 +161,18 @@ bool DiagonalFlow::recompute_box(std::int32_t k) {
   return !same;
 }
 
-double DiagonalFlow::power(double distance) const {
-  return q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
-}
-
 double DiagonalFlow::cost(std::uint32_t i, std::uint32_t j) const {
-  return power(linf_distance(pa_[i], tree_b_->points()[j]));
+  return power_(linf_distance(pa_[i], tree_b_->points()[j]));
 }
 
 double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
   const auto& box = tree_b_->nodes()[node];
   if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
-  const double c = power(tree_b_->box_distance(box, pa_[i]));
+  const double c = power_(tree_b_->box_distance(box, pa_[i]));
   if (!(c < da_[i] + box_db_[node])) return kInf;  // no arc into the box beats the diagonal
   const BoxMax& m = box_max_[node];
   double bound = c + pi_[i] - m.pi;
-  if (q_ == 1) {
+  if (power_.is_identity()) {
     // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
     const PlanePoint a = pa_[i];
     bound = std::max(

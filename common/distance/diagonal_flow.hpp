@@ -9,16 +9,17 @@
 // The pair arcs are implicit: every pair (a_i, b_j) with c_ij < da_i + db_j is an
 // arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
 // a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
-// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (for q = 1 also the
-// bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow potentials
-// sloping across the box). Boxes are opened best first, boxes whose points are all settled are
-// skipped, so the search is exact on the complete graph and no optimality certificate is needed.
-// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
-// column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
-// the diagonal's remaining units are routed before the remaining rows (measured: ~10% fewer nodes
-// settled on LAMMPS PD1 pairs).
+// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (when costs are the
+// lengths themselves also the bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b,
+// -+ y_b, which follow potentials sloping across the box). Boxes are opened best first, boxes whose points are all
+// settled are skipped, so the search is exact on the complete graph and no optimality certificate is needed. The flow
+// starts from a row reduction (each a_i takes its cheapest way out when free) and a column step for the b_j left free
+// (fed from the diagonal when that is their cheapest way in); the diagonal's remaining units are routed before the
+// remaining rows (measured: ~10% fewer nodes settled on LAMMPS PD1 pairs).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <set>
@@ -30,14 +31,40 @@
 
 namespace fnet {
 
+// The cost of an arc of L-infinity length d: (d / unit)^q, the one place the q-th power is taken.
+// Costs above kCap are capped: the caller picks the unit so that every arc of an optimal matching
+// costs far less (wasserstein.cpp), so a capped arc is in no optimal matching, and the cap keeps
+// the potentials, keys and bounds of the searches finite whatever q.
+class ArcPower {
+ public:
+  static constexpr double kCap = 0x1p900;
+
+  // q >= 1 and unit > 0, both finite.
+  explicit ArcPower(double q, double unit = 1);
+
+  double operator()(double length) const {
+    if (kind_ == Kind::identity) return length;
+    if (kind_ == Kind::square) return length * length;
+    return std::min(kCap, std::pow(length / unit_, q_));
+  }
+  double q() const { return q_; }
+  double unit() const { return unit_; }
+  bool is_identity() const { return kind_ == Kind::identity; }  // the cost is the length itself
+
+ private:
+  // q = 1 and q = 2 in unit 1, the hot path, need neither the division nor the cap: their costs
+  // never exceed the squared coordinate range.
+  enum class Kind : std::uint8_t { identity, square, general };
+  double q_, unit_;
+  Kind kind_;
+};
+
 class DiagonalFlow {
  public:
   static constexpr std::int64_t kNone = -1, kDiagonal = -2;
 
-  // Costs to the diagonal, already raised to the power q; c_ij = ||a_i - b_j||_inf ^ q (a and b
-  // already scaled like the costs).
-  DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::span<const PlanePoint> a,
-               std::span<const PlanePoint> b, double q);
+  // Arc costs power(length): a_i -> HB power(|x_i - y_i| / 2), a_i -> b_j power(||a_i - b_j||_inf).
+  DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power);
 
   // Completes the flow to an optimal one.
   void solve();
@@ -93,8 +120,6 @@ class DiagonalFlow {
   void pop_stream(int stream);              // relaxes the stream's next arc
   void refresh(std::uint32_t node);
   bool is_sink(std::uint32_t v) const;
-  // The q-th power of a distance: the cost of an arc of that length.
-  double power(double distance) const;
   double cost(std::uint32_t i, std::uint32_t j) const;
   double box_key(std::uint32_t i, std::int32_t node) const;
   void open_box(std::uint32_t i, std::int32_t node);
@@ -118,7 +143,7 @@ class DiagonalFlow {
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
   // between refreshes), each node's parent and each point's leaf.
-  double q_ = 1;
+  ArcPower power_;
   std::vector<PlanePoint> pa_;
   std::unique_ptr<LinfKdTree> tree_b_;
   struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b
