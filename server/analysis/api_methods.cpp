@@ -85,6 +85,7 @@ struct MetricSpec {
   std::string name;
   double q = 0;                  // 0 for bottleneck
   std::optional<Metric> stored;  // one of the three metrics every frame carries
+  DistanceMetric distance;
 };
 
 MetricSpec get_metric(const json& params) {
@@ -105,6 +106,7 @@ MetricSpec get_metric(const json& params) {
     throw Error(rpc::kInvalidParams,
                 "unknown metric '" + m.name + "' (expected bottleneck, wasserstein1, wasserstein2 or wasserstein)");
   }
+  if (m.name != "bottleneck") m.distance = DistanceMetric::wasserstein(m.q);
   return m;
 }
 
@@ -207,8 +209,8 @@ json series_get(const Registry& registry, const json& params) {
       infinite.push_back(false);
       continue;
     }
-    const DistanceResult r = diagram_distance_q(diagram_of(prev_frame->diagrams, force, dim),
-                                                diagram_of(f->diagrams, force, dim), metric.q, essential);
+    const DistanceResult r = diagram_distance(diagram_of(prev_frame->diagrams, force, dim),
+                                              diagram_of(f->diagrams, force, dim), metric.distance, essential);
     value.push_back(r.infinite ? json(nullptr) : json(r.value));
     infinite.push_back(r.infinite);
     any_infinite |= r.infinite;
@@ -259,8 +261,8 @@ json distance_get(const Registry& registry, const json& params) {
   if (!a) throw Error(rpc::kUnknownFrame, "run '" + run_a + "' has no analyzed frame " + std::to_string(frame_a));
   if (!b) throw Error(rpc::kUnknownFrame, "run '" + run_b + "' has no analyzed frame " + std::to_string(frame_b));
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = diagram_distance_q(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
-                                              metric.q, essential, delta);
+  const DistanceResult r = diagram_distance(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
+                                            metric.distance, essential, delta);
   json out = to_json(r);
   out.update(describe(metric, dim, force, essential));
   out["run"] = run_a;

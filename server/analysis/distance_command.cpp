@@ -93,7 +93,9 @@ int distance_command(const std::vector<std::string>& args) {
 
   const Diagram a = read_diagram(files[0], dim), b = read_diagram(files[1], dim);
   const auto start = std::chrono::steady_clock::now();
-  const DistanceResult result = diagram_distance_q(a, b, metric == "bottleneck" ? 0 : q, convention, delta);
+  const DistanceMetric distance =
+      metric == "bottleneck" ? DistanceMetric::bottleneck() : DistanceMetric::wasserstein(q);
+  const DistanceResult result = diagram_distance(a, b, distance, convention, delta);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json out = to_json(result);
   out["metric"] = metric;
