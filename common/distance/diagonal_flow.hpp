@@ -47,8 +47,6 @@ class ArcPower {
     if (kind_ == Kind::square) return length * length;
     return std::min(kCap, std::pow(length / unit_, q_));
   }
-  double q() const { return q_; }
-  double unit() const { return unit_; }
   bool is_identity() const { return kind_ == Kind::identity; }  // the cost is the length itself
 
  private:
@@ -63,7 +61,8 @@ class DiagonalFlow {
  public:
   static constexpr std::int64_t kNone = -1, kDiagonal = -2;
 
-  // Arc costs power(length): a_i -> HB power(|x_i - y_i| / 2), a_i -> b_j power(||a_i - b_j||_inf).
+  // Arc costs power(length): a_i -> b_j power(||a_i - b_j||_inf), a_i -> HB and HA -> b_j the
+  // power of the point's distance to the diagonal, |x - y| / 2.
   DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power);
 
   // Completes the flow to an optimal one.
@@ -126,7 +125,8 @@ class DiagonalFlow {
   void update_box_maxima(std::uint32_t j);
 
   std::uint32_t n_, m_, ha_, hb_;
-  std::vector<double> da_, db_;
+  ArcPower power_;
+  std::vector<double> da_, db_;  // costs to the diagonal
 
   std::vector<std::int64_t> mate_a_, mate_b_;  // partner index, kDiagonal or kNone
   std::vector<double> mate_cost_a_;
@@ -143,7 +143,6 @@ class DiagonalFlow {
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
   // between refreshes), each node's parent and each point's leaf.
-  ArcPower power_;
   std::vector<PlanePoint> pa_;
   std::unique_ptr<LinfKdTree> tree_b_;
   struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b

@@ -122,7 +122,7 @@ DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const Wa
   // overflows, while terms that underflow are below 1e-300 of S. Arcs longer than N^(1/q) d_B
   // are in no optimal matching, and ArcPower caps their costs.
   const double bottleneck = bottleneck_distance(a, b, {.essential = params.essential}).value;
-  if (bottleneck == 0) return exact_result(0);
+  if (bottleneck == 0) return exact_result(0);  // equal diagrams, caught above; no unit of length
   const Sums sums = solve(va, vb, 1, ArcPower(q, bottleneck), st);
   st.dual_lower = root(sums.dual, bottleneck);
   return exact_result(root(sums.cost, bottleneck));
