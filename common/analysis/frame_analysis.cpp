@@ -1,5 +1,7 @@
 #include "common/analysis/frame_analysis.hpp"
 
+#include <stdexcept>
+
 #include "common/distance/bottleneck.hpp"
 #include "common/distance/wasserstein.hpp"
 
@@ -27,22 +29,26 @@ const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim) 
   return dim == 0 ? d.pd0 : d.pd1;
 }
 
-DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric, EssentialConvention essential) {
+DistanceMetric distance_metric(Metric metric) {
   switch (metric) {
     case Metric::bottleneck:
-      return diagram_distance_q(a, b, 0, essential);
+      return DistanceMetric::bottleneck();
     case Metric::wasserstein1:
-      return diagram_distance_q(a, b, 1, essential);
+      return DistanceMetric::wasserstein(1);
     case Metric::wasserstein2:
-      return diagram_distance_q(a, b, 2, essential);
+      return DistanceMetric::wasserstein(2);
   }
-  return {};
+  throw std::invalid_argument("unknown stored metric");
 }
 
-DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q, EssentialConvention essential,
-                                  double delta) {
-  if (q == 0) return bottleneck_distance(a, b, {essential, delta});
-  return wasserstein_distance(a, b, {.q = q, .essential = essential, .delta = delta});
+DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric, EssentialConvention essential) {
+  return diagram_distance(a, b, distance_metric(metric), essential);
+}
+
+DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetric metric,
+                                EssentialConvention essential, double delta) {
+  if (metric.is_bottleneck()) return bottleneck_distance(a, b, {.essential = essential, .relative_error = delta});
+  return wasserstein_distance(a, b, {.q = metric.q, .essential = essential, .delta = delta});
 }
 
 StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current,

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "common/distance/distance_metric.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
@@ -30,12 +31,14 @@ FrameDiagramSet analyze_frame(const Frame& frame);
 
 const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim);
 
-// Distance between two diagrams by metric name, or by exponent: q >= 1 the Wasserstein distance,
-// q == 0 the bottleneck (q = infinity). delta: the accepted relative error (0: exact).
+// The distance one of the stored metrics names.
+DistanceMetric distance_metric(Metric metric);
+
+// Distance between two diagrams. delta: the accepted relative error (0: exact).
 DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metric,
                                 EssentialConvention essential = EssentialConvention::floor);
-DistanceResult diagram_distance_q(const Diagram& a, const Diagram& b, double q,
-                                  EssentialConvention essential = EssentialConvention::floor, double delta = 0);
+DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetric metric,
+                                EssentialConvention essential = EssentialConvention::floor, double delta = 0);
 
 // The twelve exact distances between consecutive frames, indexed by step_index().
 struct StepDistances {

@@ -16,6 +16,10 @@ std::string format_q(double q) {
 
 }  // namespace
 
+DistanceMetric MetricChoice::distance() const {
+  return q ? DistanceMetric::wasserstein(*q) : DistanceMetric::bottleneck();
+}
+
 std::string MetricChoice::label() const {
   if (name == "wasserstein" && q) return "wasserstein q=" + format_q(*q);
   return name;
@@ -65,7 +69,7 @@ std::string series_key(Metric metric, int dim, ForceKind force) {
 
 DistanceResult choice_distance(const Diagram& a, const Diagram& b, const MetricChoice& metric,
                                EssentialConvention essential, double delta) {
-  return diagram_distance_q(a, b, metric.is_bottleneck() ? 0 : *metric.q, essential, delta);
+  return diagram_distance(a, b, metric.distance(), essential, delta);
 }
 
 }  // namespace fnet

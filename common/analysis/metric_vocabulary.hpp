@@ -23,6 +23,8 @@ struct MetricChoice {
   std::optional<Metric> stored;  // the stored series equal to this metric, if any
 
   bool is_bottleneck() const { return !q.has_value(); }
+  // The value the maths computes with.
+  DistanceMetric distance() const;
   // "bottleneck", "wasserstein1", "wasserstein2", or "wasserstein q=3.5".
   std::string label() const;
 };

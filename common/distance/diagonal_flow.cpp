@@ -10,20 +10,29 @@ namespace fnet {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr std::int64_t kGenerator[2] = {-1, -2};  // heap ids of the two hubs' lazy arc streams
-// Heap ids of tree boxes start here: at equal keys nodes pop first, so a sink found at the current
-// distance ends the search before any box that cannot beat it is opened.
-constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
+
+std::vector<double> diagonal_costs(std::span<const PlanePoint> points, const ArcPower& power) {
+  std::vector<double> out;
+  out.reserve(points.size());
+  for (const PlanePoint p : points) out.push_back(power(std::fabs(p.x - p.y) / 2));
+  return out;
+}
 }  // namespace
 
-DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b,
-                           std::span<const PlanePoint> a, std::span<const PlanePoint> b, double q)
-    : n_(static_cast<std::uint32_t>(diagonal_a.size())),
-      m_(static_cast<std::uint32_t>(diagonal_b.size())),
+ArcPower::ArcPower(double q, double unit) : q_(q), unit_(unit) {
+  if (!std::isfinite(q) || q < 1) throw std::invalid_argument("arc power: q must be finite and >= 1");
+  if (!std::isfinite(unit) || !(unit > 0)) throw std::invalid_argument("arc power: unit must be finite and > 0");
+  kind_ = unit != 1 ? Kind::general : q == 1 ? Kind::identity : q == 2 ? Kind::square : Kind::general;
+}
+
+DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power)
+    : n_(static_cast<std::uint32_t>(a.size())),
+      m_(static_cast<std::uint32_t>(b.size())),
       ha_(n_ + m_),
       hb_(n_ + m_ + 1),
-      da_(std::move(diagonal_a)),
-      db_(std::move(diagonal_b)),
+      power_(power),
+      da_(diagonal_costs(a, power_)),
+      db_(diagonal_costs(b, power_)),
       mate_a_(n_, kNone),
       mate_b_(m_, kNone),
       mate_cost_a_(n_, 0),
@@ -34,8 +43,7 @@ DiagonalFlow::DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> d
       pred_(n_ + m_ + 2, 0),
       seen_(n_ + m_ + 2, 0),
       final_(n_ + m_ + 2, 0) {
-  for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
-  q_ = q;
+  for (std::uint32_t j = 0; j < m_; ++j) refresh(node_of_b(j));
   pa_.assign(a.begin(), a.end());
   tree_b_ = std::make_unique<LinfKdTree>(b);
   const auto nodes = tree_b_->nodes();
@@ -108,8 +116,7 @@ void DiagonalFlow::greedy_start() {
     while (!stack.empty()) {
       const auto& node = nodes[stack.back()];
       stack.pop_back();
-      const double distance = tree_a.box_distance(node, points_b[j]);
-      const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+      const double c = power_(tree_a.box_distance(node, points_b[j]));
       if (!(c + min_pi[&node - nodes.data()] < best)) continue;
       if (node.left >= 0) {
         stack.push_back(node.left), stack.push_back(node.right);
@@ -120,10 +127,10 @@ void DiagonalFlow::greedy_start() {
         best = std::min(best, cost(i, j) + pi_[i]);
       }
     }
-    pi_[n_ + j] = best;
+    pi_[node_of_b(j)] = best;
     if (best == db_[j]) mate_b_[j] = kDiagonal, ++b_from_diagonal_;
   }
-  for (std::uint32_t j = 0; j < m_; ++j) refresh(n_ + j);
+  for (std::uint32_t j = 0; j < m_; ++j) refresh(node_of_b(j));
   for (std::size_t k = box_max_.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
 }
 
@@ -135,7 +142,7 @@ bool DiagonalFlow::recompute_box(std::int32_t k) {
     const auto points = tree_b_->points();
     for (std::uint32_t s = node.begin; s < node.end; ++s) {
       const std::uint32_t j = order[s];
-      const double p = pi_[n_ + j];
+      const double p = pi_[node_of_b(j)];
       const PlanePoint b = points[j];
       value.pi = std::max(value.pi, p);
       value.minus_x = std::max(value.minus_x, p - b.x), value.plus_x = std::max(value.plus_x, p + b.x);
@@ -155,19 +162,17 @@ bool DiagonalFlow::recompute_box(std::int32_t k) {
 }
 
 double DiagonalFlow::cost(std::uint32_t i, std::uint32_t j) const {
-  const double d = linf_distance(pa_[i], tree_b_->points()[j]);
-  return q_ == 1 ? d : q_ == 2 ? d * d : std::pow(d, q_);
+  return power_(linf_distance(pa_[i], tree_b_->points()[j]));
 }
 
 double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
   const auto& box = tree_b_->nodes()[node];
   if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
-  const double distance = tree_b_->box_distance(box, pa_[i]);
-  const double c = q_ == 1 ? distance : q_ == 2 ? distance * distance : std::pow(distance, q_);
+  const double c = power_(tree_b_->box_distance(box, pa_[i]));
   if (!(c < da_[i] + box_db_[node])) return kInf;  // no arc into the box beats the diagonal
   const BoxMax& m = box_max_[node];
   double bound = c + pi_[i] - m.pi;
-  if (q_ == 1) {
+  if (power_.is_identity()) {
     // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
     const PlanePoint a = pa_[i];
     bound = std::max(
@@ -195,9 +200,7 @@ void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
         if (key <= current_) {
           box_stack_.push_back(child);
         } else {
-          boxes_.push_back({i, child});
-          heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
-          std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+          push_box(i, child, key);
         }
       }
       continue;
@@ -207,7 +210,7 @@ void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
       if (mate_a_[i] == static_cast<std::int64_t>(j)) continue;
       const double c = cost(i, j);
       if (!(c < da_[i] + db_[j])) continue;  // never beats sending both to the diagonal
-      relax(n_ + j, d + std::max(0.0, c + pi_[i] - pi_[n_ + j]), i, c);
+      relax(node_of_b(j), d + std::max(0.0, c + pi_[i] - pi_[node_of_b(j)]), i, c);
     }
   }
 }
@@ -226,26 +229,39 @@ double DiagonalFlow::primal_cost() const {
 }
 
 void DiagonalFlow::refresh(std::uint32_t node) {
+  // a_i is filed in HB's stream while it is sent to the diagonal, b_j in HA's while it is not fed
+  // from it; the hubs are never filed.
   double want = std::numeric_limits<double>::quiet_NaN();
-  int which = -1;
-  if (node < n_) {
-    if (mate_a_[node] == kDiagonal) want = -da_[node] - pi_[node], which = 1;
-  } else if (node < n_ + m_) {
-    if (mate_b_[node - n_] != kDiagonal) want = db_[node - n_] - pi_[node], which = 0;
+  bool filed = false;
+  if (is_a(node)) {
+    if (mate_a_[node] == kDiagonal) want = -da_[node] - pi_[node], filed = true;
+  } else if (is_b(node)) {
+    if (mate_b_[b_of_node(node)] != kDiagonal) want = db_[b_of_node(node)] - pi_[node], filed = true;
   }
-  auto& set = node < n_ ? hub_b_ : hub_a_;
+  auto& set = is_a(node) ? hub_b_ : hub_a_;
+  const std::uint32_t index = is_a(node) ? node : b_of_node(node);
   if (!std::isnan(key_[node])) {
     if (key_[node] == want) return;
-    set.erase({key_[node], node < n_ ? node : node - n_});
+    set.erase({key_[node], index});
   }
   key_[node] = want;
-  if (which >= 0) set.insert({want, node < n_ ? node : node - n_});
+  if (filed) set.insert({want, index});
 }
 
 bool DiagonalFlow::is_sink(std::uint32_t v) const {
-  if (v >= n_ && v < n_ + m_) return mate_b_[v - n_] == kNone;
+  if (is_b(v)) return mate_b_[b_of_node(v)] == kNone;
   if (v == hb_) return a_to_diagonal_ + flow_hub_ < static_cast<std::int64_t>(n_);
   return false;
+}
+
+void DiagonalFlow::push(double key, std::int64_t id) {
+  heap_.push_back({key, id});
+  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+}
+
+void DiagonalFlow::push_box(std::uint32_t row, std::int32_t node, double key) {
+  boxes_.push_back({row, node});
+  push(key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1));
 }
 
 void DiagonalFlow::relax(std::uint32_t v, double d, std::uint32_t from, double cost) {
@@ -255,55 +271,73 @@ void DiagonalFlow::relax(std::uint32_t v, double d, std::uint32_t from, double c
   dist_[v] = d;
   pred_[v] = from;
   pred_cost_[v] = cost;
-  heap_.push_back({d, v});
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  push(d, v);
   // Nothing left in the heap is below current_: a sink reached at that distance is a shortest path.
   if (d <= current_ && early_ < 0 && is_sink(v)) early_ = v;
 }
 
-void DiagonalFlow::push_generator(int which) {
-  const auto& set = which == 0 ? hub_a_ : hub_b_;
-  const std::uint32_t offset = which == 0 ? n_ : 0;
-  Cursor& c = cursor_[which];
-  while (c != set.end() && final_[offset + c->second] == run_) ++c;
-  if (c == set.end()) return;
-  const std::uint32_t hub = which == 0 ? ha_ : hb_;
-  const double d = hub_dist_[which] + std::max(0.0, pi_[hub] + c->first);
-  heap_.push_back({d, kGenerator[which]});
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+const DiagonalFlow::Arcs& DiagonalFlow::stream_arcs(int stream) const { return stream == kStreamHa ? hub_a_ : hub_b_; }
+
+std::uint32_t DiagonalFlow::stream_node(int stream, std::uint32_t index) const {
+  return stream == kStreamHa ? node_of_b(index) : index;
+}
+
+std::uint32_t DiagonalFlow::stream_hub(int stream) const { return stream == kStreamHa ? ha_ : hb_; }
+
+bool DiagonalFlow::skip_settled(int stream) {
+  const Arcs& arcs = stream_arcs(stream);
+  Cursor& c = cursor_[stream];
+  while (c != arcs.end() && final_[stream_node(stream, c->second)] == run_) ++c;
+  return c != arcs.end();
+}
+
+void DiagonalFlow::push_stream(int stream) {
+  if (!skip_settled(stream)) return;
+  push(hub_dist_[stream] + std::max(0.0, pi_[stream_hub(stream)] + cursor_[stream]->first), stream_entry(stream));
+}
+
+void DiagonalFlow::start_stream(int stream, double d) {
+  hub_dist_[stream] = d;
+  cursor_[stream] = stream_arcs(stream).begin();
+  push_stream(stream);
+}
+
+void DiagonalFlow::pop_stream(int stream) {
+  if (!skip_settled(stream)) return;
+  Cursor& c = cursor_[stream];
+  const std::uint32_t hub = stream_hub(stream);
+  const double arc_cost = stream == kStreamHa ? db_[c->second] : -da_[c->second];
+  relax(stream_node(stream, c->second), hub_dist_[stream] + std::max(0.0, pi_[hub] + c->first), hub, arc_cost);
+  ++c;
+  push_stream(stream);
 }
 
 void DiagonalFlow::scan(std::uint32_t u, double d) {
-  if (u < n_) {
+  if (is_a(u)) {
     if (!tree_b_->nodes().empty()) {
       const double key = box_key(u, 0);
       if (key <= d) {
         open_box(u, 0);
       } else if (key < kInf) {
-        boxes_.push_back({u, 0});
-        heap_.push_back({key, kBoxBase + static_cast<std::int64_t>(boxes_.size() - 1)});
-        std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+        push_box(u, 0, key);
       }
     }
     if (mate_a_[u] != kDiagonal) relax(hb_, d + std::max(0.0, da_[u] + pi_[u] - pi_[hb_]), u, da_[u]);
-  } else if (u < n_ + m_) {
-    const std::int64_t mate = mate_b_[u - n_];
+  } else if (is_b(u)) {
+    const std::uint32_t j = b_of_node(u);
+    const std::int64_t mate = mate_b_[j];
     if (mate >= 0) {
       const auto i = static_cast<std::uint32_t>(mate);
       relax(i, d + std::max(0.0, -mate_cost_a_[i] + pi_[u] - pi_[i]), u, -mate_cost_a_[i]);
     } else if (mate == kDiagonal) {
-      relax(ha_, d + std::max(0.0, -db_[u - n_] + pi_[u] - pi_[ha_]), u, -db_[u - n_]);
+      relax(ha_, d + std::max(0.0, -db_[j] + pi_[u] - pi_[ha_]), u, -db_[j]);
     }
   } else if (u == ha_) {
     relax(hb_, d + std::max(0.0, pi_[ha_] - pi_[hb_]), u, 0);
-    hub_dist_[0] = d;
-    cursor_[0] = hub_a_.begin();
-    push_generator(0);
+    start_stream(kStreamHa, d);
   } else {
     if (flow_hub_ > 0) relax(ha_, d + std::max(0.0, pi_[hb_] - pi_[ha_]), u, 0);
-    hub_dist_[1] = d;
-    cursor_[1] = hub_b_.begin();
-    push_generator(1);
+    start_stream(kStreamHb, d);
   }
 }
 
@@ -316,13 +350,13 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
   finalized_.clear();
   seen_[source] = run_;
   dist_[source] = 0;
-  heap_.push_back({0.0, source});
+  push(0.0, source);
   std::int64_t target = -1;
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
     const auto [d, id] = heap_.back();
     heap_.pop_back();
-    if (id >= kBoxBase) {
+    if (is_box_entry(id)) {
       const BoxEntry box = boxes_[static_cast<std::size_t>(id - kBoxBase)];
       current_ = d;
       open_box(box.row, box.node);
@@ -332,18 +366,8 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
       }
       continue;
     }
-    if (id < 0) {
-      const int which = id == kGenerator[0] ? 0 : 1;
-      const auto& set = which == 0 ? hub_a_ : hub_b_;
-      const std::uint32_t offset = which == 0 ? n_ : 0, hub = which == 0 ? ha_ : hb_;
-      Cursor& c = cursor_[which];
-      while (c != set.end() && final_[offset + c->second] == run_) ++c;
-      if (c == set.end()) continue;
-      const std::uint32_t v = offset + c->second;
-      const double arc_cost = which == 0 ? db_[c->second] : -da_[c->second];
-      relax(v, hub_dist_[which] + std::max(0.0, pi_[hub] + c->first), hub, arc_cost);
-      ++c;
-      push_generator(which);
+    if (is_stream_entry(id)) {
+      pop_stream(stream_of_entry(id));
       continue;
     }
     const auto u = static_cast<std::uint32_t>(id);
@@ -351,8 +375,8 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
     final_[u] = run_;
     finalized_.push_back(u);
     ++settled_;
-    if (u >= n_ && u < n_ + m_) {
-      for (std::int32_t k = leaf_of_b_[u - n_]; k >= 0; k = box_parent_[k]) {
+    if (is_b(u)) {
+      for (std::int32_t k = leaf_of_b_[b_of_node(u)]; k >= 0; k = box_parent_[k]) {
         if (box_run_[k] != run_) box_run_[k] = run_, box_done_[k] = 0;
         ++box_done_[k];
       }
@@ -375,7 +399,7 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
   augment(source, static_cast<std::uint32_t>(target));
   for (const std::uint32_t v : finalized_) refresh(v);
   for (const std::uint32_t v : finalized_)
-    if (v >= n_ && v < n_ + m_) update_box_maxima(v - n_);
+    if (is_b(v)) update_box_maxima(b_of_node(v));
   return true;
 }
 
@@ -396,25 +420,25 @@ void DiagonalFlow::augment(std::uint32_t source, std::uint32_t target) {
   }
   for (std::size_t k = 0; k + 1 < path.size(); ++k) {
     const std::uint32_t u = path[k], v = path[k + 1];
-    if (u < n_ && v < n_ + m_) {  // a_i -> b_j
-      mate_a_[u] = v - n_, mate_b_[v - n_] = u, mate_cost_a_[u] = pred_cost_[v];
-    } else if (u < n_ && v == hb_) {
+    if (is_a(u) && is_b(v)) {  // a_u takes b_v
+      mate_a_[u] = b_of_node(v), mate_b_[b_of_node(v)] = u, mate_cost_a_[u] = pred_cost_[v];
+    } else if (is_a(u) && v == hb_) {  // a_u goes to the diagonal
       mate_a_[u] = kDiagonal, ++a_to_diagonal_;
-    } else if (u == ha_ && v < n_ + m_) {
-      mate_b_[v - n_] = kDiagonal, ++b_from_diagonal_;
+    } else if (u == ha_ && is_b(v)) {  // b_v is fed by the diagonal
+      mate_b_[b_of_node(v)] = kDiagonal, ++b_from_diagonal_;
     } else if (u == ha_ && v == hb_) {
       flow_hub_ += amount;
     } else if (u == hb_ && v == ha_) {
       --flow_hub_;
-    } else if (u == hb_ && v < n_) {  // a_v leaves the diagonal
+    } else if (u == hb_ && is_a(v)) {  // a_v leaves the diagonal
       if (mate_a_[v] == kDiagonal) mate_a_[v] = kNone;
       --a_to_diagonal_;
     } else if (v == ha_) {  // b_u no longer fed by the diagonal
-      if (mate_b_[u - n_] == kDiagonal) mate_b_[u - n_] = kNone;
+      if (mate_b_[b_of_node(u)] == kDiagonal) mate_b_[b_of_node(u)] = kNone;
       --b_from_diagonal_;
     } else {  // b_u -> a_v: the pair (a_v, b_u) is undone
-      if (mate_a_[v] == static_cast<std::int64_t>(u - n_)) mate_a_[v] = kNone;
-      if (mate_b_[u - n_] == static_cast<std::int64_t>(v)) mate_b_[u - n_] = kNone;
+      if (mate_a_[v] == static_cast<std::int64_t>(b_of_node(u))) mate_a_[v] = kNone;
+      if (mate_b_[b_of_node(u)] == static_cast<std::int64_t>(v)) mate_b_[b_of_node(u)] = kNone;
     }
   }
   for (const std::uint32_t v : path) refresh(v);
@@ -430,7 +454,10 @@ double DiagonalFlow::dual_bound() const {
   // are never scanned (they only close cycles) and may go negative: charged here.
   double dual = static_cast<double>(n_) * pi_[hb_] - static_cast<double>(m_) * pi_[ha_];
   for (std::uint32_t i = 0; i < n_; ++i) dual -= pi_[i] + std::max(0.0, -(da_[i] + pi_[i] - pi_[hb_]));
-  for (std::uint32_t j = 0; j < m_; ++j) dual += pi_[n_ + j] - std::max(0.0, -(db_[j] + pi_[ha_] - pi_[n_ + j]));
+  for (std::uint32_t j = 0; j < m_; ++j) {
+    const double pi_b = pi_[node_of_b(j)];
+    dual += pi_b - std::max(0.0, -(db_[j] + pi_[ha_] - pi_b));
+  }
   // HA -> HB is unbounded: a negative reduced cost there (beyond rounding) voids the bound.
   if (pi_[ha_] - pi_[hb_] < -1e-12 * (std::fabs(pi_[ha_]) + std::fabs(pi_[hb_]))) return -kInf;
   return dual;

@@ -9,16 +9,17 @@
 // The pair arcs are implicit: every pair (a_i, b_j) with c_ij < da_i + db_j is an
 // arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
 // a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
-// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (for q = 1 also the
-// bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow potentials
-// sloping across the box). Boxes are opened best first, boxes whose points are all settled are
-// skipped, so the search is exact on the complete graph and no optimality certificate is needed.
-// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
-// column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
-// the diagonal's remaining units are routed before the remaining rows (measured: ~10% fewer nodes
-// settled on LAMMPS PD1 pairs).
+// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (when costs are the
+// lengths themselves also the bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b,
+// -+ y_b, which follow potentials sloping across the box). Boxes are opened best first, boxes whose points are all
+// settled are skipped, so the search is exact on the complete graph and no optimality certificate is needed. The flow
+// starts from a row reduction (each a_i takes its cheapest way out when free) and a column step for the b_j left free
+// (fed from the diagonal when that is their cheapest way in); the diagonal's remaining units are routed before the
+// remaining rows (measured: ~10% fewer nodes settled on LAMMPS PD1 pairs).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <set>
@@ -30,14 +31,39 @@
 
 namespace fnet {
 
+// The cost of an arc of L-infinity length d: (d / unit)^q, the one place the q-th power is taken.
+// Costs above kCap are capped: the caller picks the unit so that every arc of an optimal matching
+// costs far less (wasserstein.cpp), so a capped arc is in no optimal matching, and the cap keeps
+// the potentials, keys and bounds of the searches finite whatever q.
+class ArcPower {
+ public:
+  static constexpr double kCap = 0x1p900;
+
+  // q >= 1 and unit > 0, both finite.
+  explicit ArcPower(double q, double unit = 1);
+
+  double operator()(double length) const {
+    if (kind_ == Kind::identity) return length;
+    if (kind_ == Kind::square) return length * length;
+    return std::min(kCap, std::pow(length / unit_, q_));
+  }
+  bool is_identity() const { return kind_ == Kind::identity; }  // the cost is the length itself
+
+ private:
+  // q = 1 and q = 2 in unit 1, the hot path, need neither the division nor the cap: their costs
+  // never exceed the squared coordinate range.
+  enum class Kind : std::uint8_t { identity, square, general };
+  double q_, unit_;
+  Kind kind_;
+};
+
 class DiagonalFlow {
  public:
   static constexpr std::int64_t kNone = -1, kDiagonal = -2;
 
-  // Costs to the diagonal, already raised to the power q; c_ij = ||a_i - b_j||_inf ^ q (a and b
-  // already scaled like the costs).
-  DiagonalFlow(std::vector<double> diagonal_a, std::vector<double> diagonal_b, std::span<const PlanePoint> a,
-               std::span<const PlanePoint> b, double q);
+  // Arc costs power(length): a_i -> b_j power(||a_i - b_j||_inf), a_i -> HB and HA -> b_j the
+  // power of the point's distance to the diagonal, |x - y| / 2.
+  DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power);
 
   // Completes the flow to an optimal one.
   void solve();
@@ -58,12 +84,39 @@ class DiagonalFlow {
   std::size_t boxes_opened() const { return boxes_opened_; }
 
  private:
+  // Nodes: a_0..a_{n-1}, then b_0..b_{m-1}, then the hubs HA and HB.
+  bool is_a(std::uint32_t v) const { return v < n_; }
+  bool is_b(std::uint32_t v) const { return v >= n_ && v < n_ + m_; }
+  std::uint32_t node_of_b(std::uint32_t j) const { return n_ + j; }
+  std::uint32_t b_of_node(std::uint32_t v) const { return v - n_; }
+
+  // Heap entries, ordered by (key, id): a node (its id), a hub's lazy arc stream (negative), or a
+  // tree box entered for a row (kBoxBase + its index in boxes_). At equal keys streams pop first,
+  // then nodes, then boxes: a sink found at the current distance ends the search before any box
+  // that cannot beat it is opened.
+  static constexpr std::int64_t kBoxBase = std::int64_t{1} << 40;
+  static constexpr int kStreamHa = 0, kStreamHb = 1;  // HA -> b_j (hub_a_), HB -> a_i (hub_b_)
+  static std::int64_t stream_entry(int stream) { return -1 - stream; }
+  static bool is_stream_entry(std::int64_t id) { return id < 0; }
+  static int stream_of_entry(std::int64_t id) { return static_cast<int>(-1 - id); }
+  static bool is_box_entry(std::int64_t id) { return id >= kBoxBase; }
+  void push(double key, std::int64_t id);
+  void push_box(std::uint32_t row, std::int32_t node, double key);
+
   // A shortest path from source to a sink, then augment; false when no sink is reachable.
   bool dijkstra(std::uint32_t source);
   void augment(std::uint32_t source, std::uint32_t target);
   void relax(std::uint32_t v, double d, std::uint32_t from, double cost);
   void scan(std::uint32_t u, double d);
-  void push_generator(int which);
+  // The hubs' arcs are offered lazily, in key order, as one heap entry per hub at a time.
+  using Arcs = std::set<std::pair<double, std::uint32_t>>;  // (key, index of a_i or b_j)
+  const Arcs& stream_arcs(int stream) const;
+  std::uint32_t stream_node(int stream, std::uint32_t index) const;
+  std::uint32_t stream_hub(int stream) const;
+  bool skip_settled(int stream);            // moves the cursor past settled heads; false at the end
+  void push_stream(int stream);             // files the stream's next arc in the heap
+  void start_stream(int stream, double d);  // the hub is settled at distance d
+  void pop_stream(int stream);              // relaxes the stream's next arc
   void refresh(std::uint32_t node);
   bool is_sink(std::uint32_t v) const;
   double cost(std::uint32_t i, std::uint32_t j) const;
@@ -72,7 +125,8 @@ class DiagonalFlow {
   void update_box_maxima(std::uint32_t j);
 
   std::uint32_t n_, m_, ha_, hb_;
-  std::vector<double> da_, db_;
+  ArcPower power_;
+  std::vector<double> da_, db_;  // costs to the diagonal
 
   std::vector<std::int64_t> mate_a_, mate_b_;  // partner index, kDiagonal or kNone
   std::vector<double> mate_cost_a_;
@@ -81,15 +135,14 @@ class DiagonalFlow {
 
   // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
   // to the diagonal, keyed -da_i - pi(a_i).
-  std::set<std::pair<double, std::uint32_t>> hub_a_, hub_b_;
+  Arcs hub_a_, hub_b_;
   std::vector<double> key_;  // the key a node is filed under, NaN if not filed
-  using Cursor = std::set<std::pair<double, std::uint32_t>>::const_iterator;
-  Cursor cursor_[2];
-  double hub_dist_[2] = {0, 0};
+  using Cursor = Arcs::const_iterator;
+  Cursor cursor_[2];             // per stream: the next arc to offer
+  double hub_dist_[2] = {0, 0};  // per stream: the distance of its hub
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall
   // between refreshes), each node's parent and each point's leaf.
-  double q_ = 1;
   std::vector<PlanePoint> pa_;
   std::unique_ptr<LinfKdTree> tree_b_;
   struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b
@@ -107,7 +160,7 @@ class DiagonalFlow {
     std::uint32_t row;
     std::int32_t node;
   };
-  std::vector<BoxEntry> boxes_;  // heap ids from kBoxBase on index this
+  std::vector<BoxEntry> boxes_;  // box heap entries index this
   double current_ = 0;           // key of the entry being processed
   std::int64_t early_ = -1;      // a sink relaxed at distance current_
 

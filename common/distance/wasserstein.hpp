@@ -31,9 +31,11 @@ struct WassersteinStats {
 // Min-cost flow on the complete bipartite graph plus the diagonal as two hubs, solved by successive
 // shortest paths from a row-reduction start; the pair arcs are never stored: each search walks a
 // 2-d tree over B with per-box potential bounds (diagonal_flow.hpp). delta > 0 is accepted and
-// answered exactly (lower == upper), see wasserstein.cpp. Coordinates are rescaled by a power of
-// two first (exact), so the result is scale-invariant to rounding and q-th powers neither
-// overflow nor lose the distance scale.
+// answered exactly (lower == upper), see wasserstein.cpp. Lengths are taken in a unit that keeps
+// every q-th power of an optimal matching finite and its sum >= 1 (q = 1, 2: a power of two
+// near the largest persistence, exact; other q, or when that sum would underflow: the bottleneck
+// distance d_B), so for every q the result is scale-invariant to rounding, d_B <= d_Wq <=
+// N^(1/q) d_B (N points in all) holds to the last bit, and d_Wq -> d_B as q grows.
 DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const WassersteinParams& params = {},
                                     WassersteinStats* stats = nullptr);
 

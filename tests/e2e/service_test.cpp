@@ -152,6 +152,23 @@ TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
   ASSERT_EQ(offline.frames.size(), 6u);
   expect_series_match(server.port, "live", offline);
 
+  // Any q is computed on demand; with q = 1000 its q-th powers once underflowed to a series of 0s.
+  // d_B <= d_Wq <= N^(1/q) d_B for diagrams of N points in all.
+  RpcClient rpc("127.0.0.1", server.port);
+  for (int dim = 0; dim < 2; ++dim) {
+    const json s = rpc.call("series.get", {{"run", "live"}, {"metric", "wasserstein"}, {"q", 1000}, {"dim", dim}});
+    ASSERT_EQ(s["value"].size(), offline.frames.size());
+    for (std::size_t k = 1; k < offline.frames.size(); ++k) {
+      const AnalyzedFrame& f = offline.frames[k];
+      ASSERT_EQ(f.previous, offline.frames[k - 1].header.index);
+      const double bottleneck = f.distances(Metric::bottleneck, dim, ForceKind::normal), value = s["value"][k];
+      const auto& before = diagram_of(offline.frames[k - 1].diagrams, ForceKind::normal, dim);
+      const auto points = static_cast<double>(before.size() + diagram_of(f.diagrams, ForceKind::normal, dim).size());
+      EXPECT_GE(value, bottleneck) << "pd" << dim << " frame " << k;
+      EXPECT_LE(value, bottleneck * std::pow(points, 1e-3) * (1 + 1e-12)) << "pd" << dim << " frame " << k;
+    }
+  }
+
   // fnetctl --format json: one object with equal-length arrays frame, rho, value.
   Process ctl(
       FNETCTL,

@@ -76,6 +76,21 @@ struct Pt {
 
 double linf(Pt a, Pt b) { return std::max(std::fabs(a.x - b.x), std::fabs(a.y - b.y)); }
 
+// The q-norm of a list of costs (q == 0: the largest), in long double and held as top^q * scaled
+// with top the largest cost so far: no ratio to top exceeds 1, so no power overflows for any q,
+// and powers that underflow are below 1e-4900 of the total.
+struct Norm {
+  long double q = 0, top = 0, scaled = 0;
+
+  Norm with(long double cost) const {
+    if (q == 0) return {q, std::max(top, cost), 0};
+    if (cost == 0) return *this;
+    if (cost > top) return {q, cost, scaled * std::pow(top / cost, q) + 1};
+    return {q, top, scaled + std::pow(cost / top, q)};
+  }
+  long double value() const { return q == 0 || top == 0 ? top : top * std::pow(scaled, 1 / q); }
+};
+
 }  // namespace
 
 double brute_force_distance(const Diagram& a, const Diagram& b, double q, EssentialConvention convention) {
@@ -95,37 +110,39 @@ double brute_force_distance(const Diagram& a, const Diagram& b, double q, Essent
   }
   const double inf = std::numeric_limits<double>::infinity();
   if (ea.size() != eb.size()) return inf;
-  // Essential classes: every bijection, not just the sorted one.
+  // Essential classes: every bijection, not just the sorted one. The optimum splits into the best
+  // bijection of these plus the best matching of the rest.
   std::sort(eb.begin(), eb.end());
-  double best_ess = inf;
-  const auto combine = [q](double acc, double c) { return q == 0 ? std::max(acc, c) : acc + std::pow(c, q); };
+  const Norm none{q};
+  Norm best_ess = none;
+  bool first = true;
   do {
-    double acc = 0;
-    for (std::size_t k = 0; k < ea.size(); ++k) acc = combine(acc, std::fabs(ea[k] - eb[k]));
-    best_ess = std::min(best_ess, acc);
+    Norm acc = none;
+    for (std::size_t k = 0; k < ea.size(); ++k) acc = acc.with(std::fabs(ea[k] - eb[k]));
+    if (first || acc.value() < best_ess.value()) best_ess = acc;
+    first = false;
   } while (std::next_permutation(eb.begin(), eb.end()));
-  if (ea.empty()) best_ess = 0;
 
   std::vector<char> used(pb.size(), 0);
-  double best = inf;
-  std::function<void(std::size_t, double)> go = [&](std::size_t i, double acc) {
-    if (acc >= best) return;
+  long double best = inf;
+  std::function<void(std::size_t, Norm)> go = [&](std::size_t i, Norm acc) {
+    if (acc.value() >= best) return;
     if (i == pa.size()) {
       for (std::size_t j = 0; j < pb.size(); ++j)
-        if (!used[j]) acc = combine(acc, std::fabs(pb[j].x - pb[j].y) / 2);
-      best = std::min(best, acc);
+        if (!used[j]) acc = acc.with(std::fabs(pb[j].x - pb[j].y) / 2);
+      best = std::min(best, acc.value());
       return;
     }
-    go(i + 1, combine(acc, std::fabs(pa[i].x - pa[i].y) / 2));
+    go(i + 1, acc.with(std::fabs(pa[i].x - pa[i].y) / 2));
     for (std::size_t j = 0; j < pb.size(); ++j) {
       if (used[j]) continue;
       used[j] = 1;
-      go(i + 1, combine(acc, linf(pa[i], pb[j])));
+      go(i + 1, acc.with(linf(pa[i], pb[j])));
       used[j] = 0;
     }
   };
-  go(0, 0);
-  return q == 0 ? std::max(best, best_ess) : std::pow(best + best_ess, 1 / q);
+  go(0, best_ess);
+  return static_cast<double>(best);
 }
 
 FrameDiagramsPair lammps_diagrams(int frame, bool tangential) {
@@ -170,14 +187,20 @@ std::vector<double> oracle_distances(const Diagram& a, const Diagram& b, Essenti
 }
 
 namespace {
-double power(double x, double q) { return q == 1 ? x : q == 2 ? x * x : std::pow(x, q); }
+// Costs as DiagonalFlow takes them (q = 1, 2 in unit 1 without a division), but uncapped: the
+// bound below holds with infinite costs too.
+double power(double x, double q, double unit) {
+  if (unit == 1 && (q == 1 || q == 2)) return q == 1 ? x : x * x;
+  return std::pow(x / unit, q);
+}
 }  // namespace
 
-Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q) {
+Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q,
+                                double unit) {
   std::vector<double> da, db;
-  for (const PlanePoint p : a) da.push_back(power(std::fabs(p.x - p.y) / 2, q));
-  for (const PlanePoint p : b) db.push_back(power(std::fabs(p.x - p.y) / 2, q));
-  DiagonalFlow flow(da, db, a, b, q);
+  for (const PlanePoint p : a) da.push_back(power(std::fabs(p.x - p.y) / 2, q, unit));
+  for (const PlanePoint p : b) db.push_back(power(std::fabs(p.x - p.y) / 2, q, unit));
+  DiagonalFlow flow(a, b, ArcPower(q, unit));
   flow.solve();
   const std::size_t n = a.size(), m = b.size();
   const auto pi = flow.potentials();
@@ -189,7 +212,7 @@ Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vec
     const std::int64_t j = flow.mate_of_a(static_cast<std::uint32_t>(i));
     if (j >= 0) {
       cert.matching_valid &= ++used[static_cast<std::size_t>(j)] == 1;
-      cert.primal += power(linf_distance(a[i], b[static_cast<std::size_t>(j)]), q);
+      cert.primal += power(linf_distance(a[i], b[static_cast<std::size_t>(j)]), q, unit);
     } else {
       cert.matching_valid &= j == DiagonalFlow::kDiagonal;
       cert.primal += da[i];
@@ -203,7 +226,7 @@ Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vec
   for (std::size_t j = 0; j < m; ++j) dual += pi[n + j] - std::max(0.0, -(db[j] + ha - pi[n + j]));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < m; ++j) {
-      const double c = power(linf_distance(a[i], b[j]), q);
+      const double c = power(linf_distance(a[i], b[j]), q, unit);
       if (c < da[i] + db[j]) dual -= std::max(0.0, -(c + pi[i] - pi[n + j]));
     }
   cert.dual = ha >= hb - 1e-12 ? dual : -std::numeric_limits<double>::infinity();

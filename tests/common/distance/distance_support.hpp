@@ -26,6 +26,8 @@ Diagram scaled(const Diagram& d, double c);  // every coordinate but the -1 of n
 
 // Brute force over every matching (each point of a to a distinct point of b or the diagonal).
 // q == 0 means the bottleneck. +inf when separate and the counts of never-dying classes differ.
+// The sums of q-th powers are taken in long double relative to their largest term: exact to
+// rounding for any q (1e6 included) and any scale.
 double brute_force_distance(const Diagram& a, const Diagram& b, double q, EssentialConvention convention);
 
 // PD0 and PD1 of a LAMMPS reference frame (tests/data), normal or tangential forces.
@@ -42,12 +44,13 @@ bool oracle_available();
 
 // The Wasserstein solver's matching and an LP-dual lower bound computed here from its potentials,
 // every pair and hub arc scanned (dual_certificate_test.cpp explains the bound). Points as the
-// distances see them (apply_convention), neither side empty.
+// distances see them (apply_convention), neither side empty; costs (length / unit)^q.
 struct Certificate {
   double primal = 0, dual = 0;
   bool matching_valid = true;
 };
-Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q);
+Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q,
+                                double unit = 1);
 
 using fnet::testing::TempDir;  // tests/unit/temp_dir.hpp
 

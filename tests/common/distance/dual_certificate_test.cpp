@@ -57,6 +57,44 @@ TEST(DistanceDualCertificate, LammpsFramePairs) {
   }
 }
 
+// Large q: the solver works in units of the bottleneck distance (wasserstein.cpp); the certificate
+// is checked in the same units, with the costs it finds too long for any optimal matching left
+// infinite rather than capped.
+void expect_certified_in_bottleneck_units(const Diagram& da, const Diagram& db, double q, const std::string& what) {
+  const std::vector<PlanePoint> a = plane(da), b = plane(db);
+  ASSERT_FALSE(a.empty() || b.empty()) << what;
+  const double unit = bottleneck_distance(da, db).value;
+  const Certificate cert = certify_wasserstein(a, b, q, unit);
+  EXPECT_TRUE(cert.matching_valid) << what;
+  EXPECT_GE(cert.primal, 1) << what << " q=" << q << ": a matching without a term >= d_B";
+  EXPECT_LE(cert.primal - cert.dual, 1e-11 * cert.primal)
+      << what << " q=" << q << ": matching " << cert.primal << ", dual bound " << cert.dual;
+  EXPECT_LE(cert.dual - cert.primal, 1e-11 * cert.primal) << what << " (weak duality broken)";
+  WassersteinStats st;
+  const double value = wasserstein_distance(da, db, {.q = q}, &st).value;
+  EXPECT_TRUE(close(unit * std::pow(cert.primal, 1 / q), value, 1e-12)) << what << " q=" << q;
+  EXPECT_TRUE(close(st.dual_lower, value, 1e-12)) << what << " q=" << q;
+}
+
+TEST(DistanceDualCertificate, LargeExponentsInBottleneckUnits) {
+  std::mt19937_64 rng(405);
+  std::uniform_int_distribution<std::size_t> size(1, 200);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Diagram a = random_diagram(rng, size(rng), 4, trial % 5 == 0);
+    const Diagram b = trial % 2 ? perturbed(rng, a, 0.05) : random_diagram(rng, size(rng), 4, trial % 7 == 0);
+    if (bottleneck_distance(a, b).value == 0) continue;
+    for (const double q : {3.0, 10.0, 100.0, 1000.0, 1e6})
+      expect_certified_in_bottleneck_units(a, b, q, "trial " + std::to_string(trial));
+  }
+  for (const bool tangential : {false, true}) {
+    const FrameDiagramsPair f8 = lammps_diagrams(8, tangential), f9 = lammps_diagrams(9, tangential);
+    for (const double q : {10.0, 1000.0}) {
+      expect_certified_in_bottleneck_units(f8.pd0, f9.pd0, q, "pd0 8->9");
+      expect_certified_in_bottleneck_units(f8.pd1, f9.pd1, q, "pd1 8->9");
+    }
+  }
+}
+
 // 20 000 points per diagram: the certificate is the only exact check available at that size.
 TEST(DistanceDualCertificate, TwentyThousandPointsPerDiagram) {
   std::mt19937_64 rng(12);

@@ -2,6 +2,7 @@
 // cost matrix (exact), and the bottleneck by binary search with scipy's bipartite matching.
 // Also the command line, end to end.
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -107,6 +108,32 @@ TEST(DistanceCli, PrintsValueBoundsAndInfinity) {
   EXPECT_NE(status, 0);
   run(base + " --metric manhattan 2>/dev/null", status);
   EXPECT_NE(status, 0);
+}
+
+// q = 1000 used to print 0.0: the q-th powers of the costs underflowed. In doubles the bottleneck
+// of these inputs is 0.9 - 0.8 = 0.09999999999999998, and d_Wq may not go below it.
+TEST(DistanceCli, LargeExponentIsNeverBelowTheBottleneck) {
+  TempDir dir;
+  const auto fa = dir.path() / "a.json", fb = dir.path() / "b.json";
+  std::ofstream(fa) << R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1.5],[3.0,2.97]]})";
+  std::ofstream(fb) << R"({"pd0":[],"pd1":[[1.0,0.9],[2.0,1.45]]})";
+  std::string base = FNET_ANALYZE;
+  base.append(" distance ").append(fa.string()).append(" ").append(fb.string());
+  int status = 0;
+  const nlohmann::json bottleneck = nlohmann::json::parse(run(base + " --metric bottleneck", status));
+  ASSERT_EQ(status, 0);
+  const double d_b = bottleneck["value"].get<double>();
+  EXPECT_NEAR(d_b, 0.1, 1e-16);
+  for (const char* q : {"1000", "1e6", "100", "10"}) {
+    const nlohmann::json j = nlohmann::json::parse(run(base + " --metric wasserstein --q " + q, status));
+    ASSERT_EQ(status, 0) << q;
+    const double value = j["value"].get<double>();
+    EXPECT_GE(value, d_b) << "q=" << q;
+    EXPECT_LE(value, d_b * std::pow(5.0, 1 / std::stod(q))) << "q=" << q;  // 5 points in all
+    EXPECT_EQ(j["lower"], j["value"]);
+    EXPECT_EQ(j["upper"], j["value"]);
+    EXPECT_EQ(j["exact"], true);
+  }
 }
 
 }  // namespace
