@@ -47,13 +47,6 @@ std::vector<std::string> read_strings(hid_t file, const char* name, std::size_t 
   return out;
 }
 
-h5::PropertyList latest_format() {
-  h5::PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
-  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
-        "H5Pset_libver_bounds");  // SWMR needs it
-  return fapl;
-}
-
 // The first `rows` times of a time column, NaN where the column stops short or was never written
 // (stores from before the times were kept).
 std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t rows, const std::string& where) {
@@ -104,7 +97,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
   const std::filesystem::path fresh = path.string() + ".new";
   std::filesystem::remove(fresh);
   {
-    const h5::PropertyList fapl = latest_format();
+    const h5::PropertyList fapl = h5::latest_format();
     file_ = h5::File(H5Fcreate(fresh.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "create " + fresh.string());
     h5::Group root(H5Gopen2(file_.get(), "/", H5P_DEFAULT), "open /");
     h5::write_attribute(root.get(), "schema", std::string(kStoreSchema));
@@ -194,7 +187,7 @@ void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
 StoredRun read_store(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
-  const h5::PropertyList fapl = latest_format();
+  const h5::PropertyList fapl = h5::latest_format();
   // SWMR read opens a store whose writer is still running, or was killed.
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
              "open " + file + " (not an HDF5 store?)");

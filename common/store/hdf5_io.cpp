@@ -47,6 +47,12 @@ std::vector<T> read_any_array(hid_t group, const char* name, hid_t type, std::si
 
 }  // namespace
 
+PropertyList latest_format() {
+  PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");
+  return fapl;
+}
+
 void quiet() {
   static const bool once = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
   (void)once;

@@ -13,6 +13,9 @@ namespace fnet::h5 {
 // Turns off HDF5's own error-stack printing: our exceptions carry the messages.
 void quiet();
 
+// File access with the latest format, which SWMR (single writer, readers while it writes) needs.
+PropertyList latest_format();
+
 void write_attribute(hid_t obj, const char* name, double v);
 void write_attribute(hid_t obj, const char* name, std::uint32_t v);
 void write_attribute(hid_t obj, const char* name, std::uint64_t v);

@@ -19,13 +19,6 @@ constexpr const char* kBulk[] = {"particles", "contact_pairs", "contact_forces",
                                  "wall_contact_forces"};
 constexpr std::size_t kOffsets = 6;  // begin and end rows in particles, contacts, wall contacts
 
-h5::PropertyList latest_format() {
-  h5::PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
-  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
-        "H5Pset_libver_bounds");  // SWMR needs it
-  return fapl;
-}
-
 }  // namespace
 
 void write_run_info(hid_t root, const RunInfo& info) {
@@ -45,7 +38,7 @@ RunFileWriter::RunFileWriter(const std::filesystem::path& path, const RunInfo& i
 
 void RunFileWriter::create(const std::filesystem::path& path, const RunInfo& info) {
   h5::quiet();
-  const h5::PropertyList fapl = latest_format();
+  const h5::PropertyList fapl = h5::latest_format();
   file_ = h5::File(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "create " + path.string());
   const hid_t f = file_.get();
   {
@@ -135,7 +128,7 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw h5::Error(file + ": no such file");
-  const h5::PropertyList fapl = latest_format();
+  const h5::PropertyList fapl = h5::latest_format();
   // SWMR read opens a file whose writer is still running, or was killed; a file of the first
   // schema predates SWMR (its format cannot be opened so) and opens as a plain file.
   hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get());
