@@ -158,6 +158,7 @@ json summary_json(const RunSummary& s) {
               {"last_frame", nullptr},
               {"rho", nullptr},
               {"z", nullptr},
+              {"rho_j", s.rho_j ? json(*s.rho_j) : json(nullptr)},
               {"seconds_since_last_frame", s.seconds_since_last_frame},
               {"last_activity", s.last_activity ? json(*s.last_activity) : json(nullptr)},
               {"announced", s.has_info}};

@@ -5,6 +5,8 @@
 
 #include <boost/asio/post.hpp>
 
+#include "common/analysis/jamming.hpp"
+
 namespace fnet::server {
 
 Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits)
@@ -214,6 +216,14 @@ RunSummary Registry::summary_locked(const std::string& id, const Run& run) const
     s.last_frame = run.committed.rbegin()->first;
     s.last_rho = run.committed.rbegin()->second->header.rho;
     s.last_z = run.committed.rbegin()->second->header.z;
+    std::vector<double> rho, z;
+    rho.reserve(run.committed.size());
+    z.reserve(run.committed.size());
+    for (const auto& [index, frame] : run.committed) {
+      rho.push_back(frame->header.rho);
+      z.push_back(frame->header.z);
+    }
+    s.rho_j = jamming_density(rho, z);
   }
   s.last_activity = run.last_activity;
   s.seconds_since_last_frame = store_time_now() - run.last_activity.value_or(run.known_since);

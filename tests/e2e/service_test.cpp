@@ -141,6 +141,24 @@ void expect_series_match(unsigned short port, const std::string& run, const Stor
       }
 }
 
+// rho_J: where Z first reaches 3, interpolated between the frames around the crossing. LAMMPS
+// frames 6, 7, 8 have Z = 1.576, 2.812, 3.473: the crossing lies between the last two.
+TEST(Service, RunsReportTheirJammingPoint) {
+  testing::TempDir tmp;
+  const fs::path run_dir = make_run(tmp.path(), "csv", {6, 7, 8});
+  Server server = start_server(tmp.path() / "data", 56, tmp.path() / "server.log");
+  auto pub = publish(run_dir, "jam", 56, tmp.path() / "publish.log");
+  EXPECT_EQ(pub->wait(120s), 0);
+  wait_for_frames(server.port, "jam", 3);
+  RpcClient rpc("127.0.0.1", server.port);
+  const json run = rpc.call("run.get", {{"run", "jam"}});
+  const double rho7 = 0.802904, z7 = 2.8120, rho8 = 0.832639, z8 = 3.4730;
+  ASSERT_TRUE(run["rho_j"].is_number()) << run.dump();
+  EXPECT_NEAR(run["rho_j"].get<double>(), rho7 + (3 - z7) / (z8 - z7) * (rho8 - rho7), 1e-12);
+  EXPECT_EQ(rpc.call("runs.list")["runs"][0]["rho_j"], run["rho_j"]);
+  EXPECT_EQ(server.process->stop(), 0);
+}
+
 TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
   testing::TempDir tmp;
   const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4, 5});
