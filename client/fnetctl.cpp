@@ -128,11 +128,13 @@ int cmd_runs(Connection& rpc, const std::vector<std::string>& args) {
     std::cout << r.dump(2) << "\n";
     return kOk;
   }
-  std::printf("%-24s %7s %8s %8s %9s %7s %9s\n", "run", "frames", "rejected", "pending", "rho", "Z", "idle(s)");
+  std::printf("%-24s %7s %8s %8s %9s %7s %9s %9s\n", "run", "frames", "rejected", "pending", "rho", "Z", "rho_J",
+              "idle(s)");
   for (const json& run : runs)
-    std::printf("%-24s %7zu %8zu %8zu %9s %7s %9.1f\n", run["run"].get<std::string>().c_str(),
+    std::printf("%-24s %7zu %8zu %8zu %9s %7s %9s %9.1f\n", run["run"].get<std::string>().c_str(),
                 run["frames"].get<std::size_t>(), run["rejected"].get<std::size_t>(), run["pending"].get<std::size_t>(),
-                number(run["rho"], 5).c_str(), number(run["z"], 4).c_str(), idle_seconds(run));
+                number(run["rho"], 5).c_str(), number(run["z"], 4).c_str(),
+                number(run.value("rho_j", json(nullptr)), 5).c_str(), idle_seconds(run));
   return kOk;
 }
 

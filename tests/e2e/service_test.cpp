@@ -156,6 +156,11 @@ TEST(Service, RunsReportTheirJammingPoint) {
   ASSERT_TRUE(run["rho_j"].is_number()) << run.dump();
   EXPECT_NEAR(run["rho_j"].get<double>(), rho7 + (3 - z7) / (z8 - z7) * (rho8 - rho7), 1e-12);
   EXPECT_EQ(rpc.call("runs.list")["runs"][0]["rho_j"], run["rho_j"]);
+  Process ctl(FNETCTL, {"--port", std::to_string(server.port), "runs"}, tmp.path() / "fnetctl.log");
+  ASSERT_EQ(ctl.wait(30s), 0);
+  const std::string table = ctl.read_rest();
+  EXPECT_NE(table.find("rho_J"), std::string::npos) << table;
+  EXPECT_NE(table.find("0.81136"), std::string::npos) << table;  // 5 significant digits
   EXPECT_EQ(server.process->stop(), 0);
 }
 
