@@ -43,6 +43,7 @@ struct RunInfo {
   std::uint32_t frames = 0;
   std::uint64_t seed = 0;
   std::string config_json;
+  std::string ensemble;  // the realizations' setting this run belongs to; empty: none
   bool operator==(const RunInfo&) const = default;
 };
 
@@ -54,6 +55,9 @@ struct RunInfoField {
   const char* meaning;
   // The value is JSON text: JSON carries it parsed under `key` (or verbatim under `name`).
   bool json_text = false;
+  // Added in version 2 of the announcement: run files and stores written before lack it, and
+  // readers take it as empty.
+  bool since_v2 = false;
 };
 
 // The one list of RunInfo's fields, which every codec walks (DDS both ways, the run file, JSON):
@@ -82,6 +86,10 @@ constexpr void for_each_run_info_field(F&& f, Records&... r) {
     r.final_density...);
   f(RunInfoField{"frames", "frames_planned", "frames", "frames planned over the compression"}, r.frames...);
   f(RunInfoField{"seed", "seed", "seed", "random seed"}, r.seed...);
+  f(RunInfoField{"ensemble", "ensemble", "ensemble",
+                 "the ensemble of realizations (one setting, several seeds) the run belongs to; empty: none", false,
+                 true},
+    r.ensemble...);
 }
 
 consteval std::size_t run_info_field_count() {

@@ -30,6 +30,7 @@ RunInfo run_info_from_json(const nlohmann::json& v) {
   for_each_run_info_field(
       [&](const RunInfoField& field, auto& value) {
         using T = std::decay_t<decltype(value)>;
+        if (field.since_v2 && !v.contains(field.key)) return;  // written before version 2
         if constexpr (std::is_same_v<T, std::string>) {
           if (field.json_text) {
             if (v.contains(field.name)) {

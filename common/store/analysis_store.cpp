@@ -74,15 +74,17 @@ std::optional<StoreTime> StoredRun::last_activity() const {
   return latest;
 }
 
-std::string run_id_problem(const std::string& run_id) {
-  if (run_id.empty()) return "run id is empty";
-  if (run_id.size() > 64) return "run id longer than 64 characters";
-  for (const char c : run_id)
+std::string name_problem(const std::string& name, const std::string& what) {
+  if (name.empty()) return what + " is empty";
+  if (name.size() > 64) return what + " longer than 64 characters";
+  for (const char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'))
-      return "run id '" + run_id + "' has a character outside [A-Za-z0-9._-]";
-  if (run_id == "." || run_id == "..") return "run id '" + run_id + "' is not a name";
+      return what + " '" + name + "' has a character outside [A-Za-z0-9._-]";
+  if (name == "." || name == "..") return what + " '" + name + "' is not a name";
   return {};
 }
+
+std::string run_id_problem(const std::string& run_id) { return name_problem(run_id, "run id"); }
 
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id) {
   return data_dir / (run_id + ".h5");

@@ -59,7 +59,9 @@ StoredRun read_store(const std::filesystem::path& path);
 
 // Where a run's store lives in a data directory (run ids are restricted to [A-Za-z0-9._-]).
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id);
-// Empty when `run_id` is acceptable, else why not.
+// Empty when `name` is acceptable as a run id or ensemble name ([A-Za-z0-9._-]{1,64}, not . or
+// ..), else why not, calling it `what`.
+std::string name_problem(const std::string& name, const std::string& what);
 std::string run_id_problem(const std::string& run_id);
 
 }  // namespace fnet

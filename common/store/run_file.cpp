@@ -30,7 +30,11 @@ void write_run_info(hid_t root, const RunInfo& info) {
 RunInfo read_run_info(hid_t root, const std::string& where) {
   RunInfo info;
   for_each_run_info_field(
-      [&](const RunInfoField& field, auto& value) { h5::read_attribute(root, field.attribute, where, value); }, info);
+      [&](const RunInfoField& field, auto& value) {
+        if (field.since_v2 && H5Aexists(root, field.attribute) <= 0) return;  // written before version 2
+        h5::read_attribute(root, field.attribute, where, value);
+      },
+      info);
   return info;
 }
 

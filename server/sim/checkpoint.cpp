@@ -145,7 +145,8 @@ void load_scalars(Reader& r, Simulation& s) {
 
 }  // namespace
 
-void save_checkpoint(const Simulation& s, const std::string& run_id, const std::filesystem::path& path) {
+void save_checkpoint(const Simulation& s, const std::string& run_id, const std::filesystem::path& path,
+                     const std::string& ensemble) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   {
@@ -157,6 +158,7 @@ void save_checkpoint(const Simulation& s, const std::string& run_id, const std::
     w.string(run_id);
     save_scalars(w, s);
     fields(w, s);
+    w.string(ensemble);
     out.flush();
     if (!out) throw CheckpointError(tmp.string() + ": write failed");
   }
@@ -181,6 +183,7 @@ Restored load_checkpoint(const std::filesystem::path& path) {
   out.run_id = r.string();
   load_scalars(r, s);
   fields(r, s);
+  if (in.peek() != std::char_traits<char>::eof()) out.ensemble = r.string();
   const std::size_t bodies = s.n + s.nw;
   if (s.radius.size() != bodies || s.x[0].size() != bodies || s.x[4].size() != s.n || s.list.offset.size() != s.n + 1 ||
       s.list.hx.size() != s.list.partner.size() || s.list.meff.size() != s.list.partner.size())

@@ -17,11 +17,14 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-void save_checkpoint(const Simulation& s, const std::string& run_id, const std::filesystem::path& path);
+// `ensemble` is written last, so that checkpoints written before it existed still load (as none).
+void save_checkpoint(const Simulation& s, const std::string& run_id, const std::filesystem::path& path,
+                     const std::string& ensemble = "");
 
 struct Restored {
   Simulation simulation;
   std::string run_id;
+  std::string ensemble;  // empty: none, or a checkpoint from before ensembles
 };
 Restored load_checkpoint(const std::filesystem::path& path);
 

@@ -86,7 +86,7 @@ constexpr const char* kUsage =
 int main(int argc, char** argv) try {
   const Params defaults;
   po::options_description options(kUsage);
-  std::string config, export_dir, checkpoint_path, run_id, lammps_data, out_file;
+  std::string config, export_dir, checkpoint_path, run_id, ensemble, lammps_data, out_file;
   double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
   int domain = 0;
   unsigned threads = 1;
@@ -104,8 +104,10 @@ int main(int argc, char** argv) try {
                         "threads for the time steps (forces and the Gear step); the results are the same bits for any "
                         "count")("run-id", po::value(&run_id),
                                  "run identifier carried by every frame, [A-Za-z0-9._-]{1,64} (default "
-                                 "fnet-simd-seed<S>)")("export-csv", po::value(&export_dir),
-                                                       "write frames as CSV files into this directory")(
+                                 "<ensemble>-s<S> with --ensemble, else fnet-simd-seed<S>)")(
+      "ensemble", po::value(&ensemble),
+      "the ensemble of realizations (one setting, several seeds) this run belongs to, announced with it; "
+      "[A-Za-z0-9._-]{1,64}")("export-csv", po::value(&export_dir), "write frames as CSV files into this directory")(
       "out", po::value(&out_file),
       "write the run (parameters and every frame) to this HDF5 file, readable while it is written (proto/run_file.md)")(
       "no-dds", "do not publish frames over DDS")("domain", po::value(&domain)->default_value(0),
@@ -149,6 +151,10 @@ int main(int argc, char** argv) try {
     if (const std::string problem = fnet::run_id_problem(run_id); !problem.empty())
       throw po::error("--run-id: " + problem);
   }
+  if (vm.count("ensemble")) {
+    if (const std::string problem = fnet::name_problem(ensemble, "ensemble name"); !problem.empty())
+      throw po::error("--ensemble: " + problem);
+  }
   if (threads < 1 || threads > 256) throw po::error("--threads must be between 1 and 256");
   const bool resume = vm.count("resume") > 0;
   // The start is built before anything is written: it checks what needs the grains (the box
@@ -189,8 +195,16 @@ int main(int argc, char** argv) try {
     Restored r = load_checkpoint(checkpoint_path);
     sim = std::move(r.simulation);
     if (run_id.empty()) run_id = r.run_id;
+    if (!ensemble.empty() && !r.ensemble.empty() && ensemble != r.ensemble)
+      throw po::error("--ensemble " + ensemble + " contradicts the checkpoint's ensemble " + r.ensemble);
+    if (ensemble.empty()) ensemble = r.ensemble;
     std::fprintf(stderr, "fnet-simd: resumed %s at step %lld (%zu of %zu frames done)\n", run_id.c_str(),
                  static_cast<long long>(sim.step), sim.next_frame, sim.params.frames);
+  }
+  if (run_id.empty() && !ensemble.empty()) {
+    run_id = ensemble + "-s" + std::to_string(sim.params.seed);
+    if (const std::string problem = fnet::run_id_problem(run_id); !problem.empty())
+      throw po::error("--ensemble: the run id it makes, " + problem);
   }
   if (run_id.empty()) run_id = "fnet-simd-seed" + std::to_string(sim.params.seed);
   if (!lammps_data.empty()) write_lammps_data(sim, lammps_data);
@@ -200,7 +214,7 @@ int main(int argc, char** argv) try {
   o.run_id = run_id;
   o.workers = &workers;
   const std::size_t first_frame = resume && sim.phase != Phase::relax ? sim.next_frame : 0;
-  const fnet::RunInfo info = run_info(sim.params, run_id);
+  const fnet::RunInfo info = run_info(sim.params, run_id, ensemble);
   if (!export_dir.empty()) prepare_csv_dir(export_dir, first_frame);
   std::optional<RunFileSink> run_file;
   if (!out_file.empty()) run_file.emplace(out_file, info, resume, first_frame);
@@ -233,7 +247,7 @@ int main(int argc, char** argv) try {
                    static_cast<long long>(r.steps), r.energy, r.target);
   };
   if (!checkpoint_path.empty()) {
-    o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path); };
+    o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path, ensemble); };
     o.checkpoint_seconds = checkpoint_interval;
   }
   if (!vm.count("quiet")) o.progress = print_progress;

@@ -7,7 +7,7 @@
 
 namespace fnet::sim {
 
-RunInfo run_info(const Params& p, const std::string& run_id) {
+RunInfo run_info(const Params& p, const std::string& run_id, const std::string& ensemble) {
   // Designated, so that the compiler checks the order; a field left out fails sim.OutputSinks.
   return {.run_id = run_id,
           .particles = static_cast<std::uint32_t>(p.particles),
@@ -21,7 +21,8 @@ RunInfo run_info(const Params& p, const std::string& run_id) {
           .final_density = p.rho_final,
           .frames = static_cast<std::uint32_t>(p.frames),
           .seed = p.seed,
-          .config_json = to_json(p).dump()};
+          .config_json = to_json(p).dump(),
+          .ensemble = ensemble};
 }
 
 RunFrame run_frame(const FrameSnapshot& s) {

@@ -16,7 +16,7 @@
 
 namespace fnet::sim {
 
-RunInfo run_info(const Params& params, const std::string& run_id);
+RunInfo run_info(const Params& params, const std::string& run_id, const std::string& ensemble = "");
 RunFrame run_frame(const FrameSnapshot& snapshot);
 
 // Publishes the run's announcement on construction and every frame handed to it.

@@ -1,6 +1,7 @@
 // fnet-simd streaming for real: a subscriber on loopback receives every frame of a short run
 // bit-exact (the HDF5 run file written alongside is the reference), and fnet-server's series for
 // that run equals the offline analysis of the run file.
+#include <algorithm>
 #include <regex>
 #include <thread>
 
@@ -84,6 +85,42 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
   }
   EXPECT_GT(got.back().header.rho, 0.89);  // the compression reached its end
   simd.stop();
+}
+
+// --ensemble without --run-id: the run is NAME-sSEED and its announcement names the ensemble, on
+// DDS (the server's run.get) and in the run file.
+TEST(SimdStream, EnsembleNameIsAnnouncedAndMakesTheRunId) {
+  testing::TempDir tmp;
+  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "43"},
+                 tmp.path() / "server.log", dds_environment());
+  const auto line = server.read_line(30s);
+  ASSERT_TRUE(line);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) ")));
+  const auto port = static_cast<unsigned short>(std::stoi(m[1]));
+  std::vector<std::string> args = small_run("unused", 43, tmp.path() / "run.h5");
+  for (const char* flag : {"--run-id", "--linger"}) {
+    const auto at = std::find(args.begin(), args.end(), flag);
+    args.erase(at, at + 2);
+  }
+  *(std::find(args.begin(), args.end(), "--frames") + 1) = "2";
+  args.insert(args.end(), {"--ensemble", "mu05"});
+  Process simd(FNET_SIMD, args, tmp.path() / "simd.log", dds_environment());
+  client::RpcClient rpc("127.0.0.1", port);
+  client::json run;
+  for (int k = 0; k < 3000 && run.is_null(); ++k) {
+    const client::json listed = rpc.call("runs.list");
+    if (!listed["runs"].empty() && listed["runs"][0]["announced"] == true)
+      run = rpc.call("run.get", {{"run", listed["runs"][0]["run"]}});
+    else
+      std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_FALSE(run.is_null()) << "see " << (tmp.path() / "server.log");
+  EXPECT_EQ(run["run"], "mu05-s11");
+  EXPECT_EQ(run["parameters"]["ensemble"], "mu05");
+  EXPECT_EQ(simd.wait(120s), 0);
+  EXPECT_EQ(read_run_file(tmp.path() / "run.h5").info.ensemble, "mu05");
+  EXPECT_EQ(server.stop(), 0);
 }
 
 TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {

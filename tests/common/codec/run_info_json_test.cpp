@@ -28,6 +28,15 @@ TEST(RunInfoJson, VerbatimFormRoundTripsEveryField) {
   testing::expect_same_fields(sample, run_info_from_json(nlohmann::json::parse(json.dump())));
 }
 
+// Stores and answers written before version 2 of the announcement have no "ensemble": none.
+TEST(RunInfoJson, AnnouncementWithoutTheVersion2FieldReadsAsNoEnsemble) {
+  nlohmann::json json = to_json(testing::distinct_run_info(), JsonText::verbatim);
+  json.erase("ensemble");
+  EXPECT_EQ(run_info_from_json(json).ensemble, "");
+  json.erase("seed");  // a field of version 1 stays required
+  EXPECT_THROW(run_info_from_json(json), nlohmann::json::exception);
+}
+
 TEST(RunInfoJson, ConfigThatIsNotJsonIsServedAsAString) {
   RunInfo sample = testing::distinct_run_info();
   sample.config_json = "mu = 0.5";

@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 RunInfo info(const std::string& run) {
-  return {run, 300, 0.4, 0.5, 4000, 0.5, 0.8, 1e-3, 7.19377e-4, 0.9, 12, 7, R"({"particles": 300, "mu": 0.5})"};
+  return {run, 300, 0.4, 0.5, 4000, 0.5, 0.8, 1e-3, 7.19377e-4, 0.9, 12, 7, R"({"particles": 300, "mu": 0.5})", ""};
 }
 
 RunFrame frame(const std::string& run, std::uint32_t index, std::size_t contacts) {

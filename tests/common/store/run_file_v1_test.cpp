@@ -43,6 +43,7 @@ TEST(RunFileV1, FramesEqualTheCsvExportOfTheSameRun) {
   EXPECT_EQ(run.info.particles, 60u);
   EXPECT_EQ(run.info.frames, 3u);
   EXPECT_EQ(run.info.seed, 7u);
+  EXPECT_EQ(run.info.ensemble, "");  // announced before version 2
   ASSERT_EQ(run.frames.size(), 3u);
   for (const RunFrame& f : run.frames) EXPECT_EQ(f.frame.particle_count, 60u);
   expect_same_frames(read_csv_run(kFixture / "csv", "legacy-v1"), run.frames);

@@ -35,7 +35,7 @@ RunFrame make_frame(const std::string& run, std::uint32_t index, std::size_t n, 
 }
 
 RunInfo make_info(const std::string& run) {
-  return {run, 2000, 0.4, 0.5, 4000, 0.5, 0.8, 2.5e-5, 7.19377e-4, 0.9, 5, 42, R"({"particles":2000})"};
+  return {run, 2000, 0.4, 0.5, 4000, 0.5, 0.8, 2.5e-5, 7.19377e-4, 0.9, 5, 42, R"({"particles":2000})", "mu05"};
 }
 
 using testing::expect_bit_exact;

@@ -56,6 +56,7 @@ for args, flag in [(["--particles", "-5"], "--particles"), (["--particles", "abc
                    (["--rho-initial", "1.5"], "--rho-initial"), (["--integrator", "euler"], "--integrator"),
                    (["--run-id", "bad id/x"], "--run-id"), (["--run-id", "x" * 65], "--run-id"),
                    (["--run-id", ""], "--run-id"), (["--threads", "-1"], "--threads"),
+                   (["--ensemble", "bad name"], "--ensemble"), (["--ensemble", "e" * 63], "--ensemble"),
                    (["--rho-initial", "0.7", "--rho-final", "0.7"], "--rho-final"),
                    (["--rho-final", "0.5"], "--rho-final"),
                    (["--particles", "300", "--box", "19", "--rho-final", "0.6"], "--rho-final"),

@@ -22,7 +22,7 @@ TEST(OutputSinks, RunInfoCarriesEveryParameterItAnnounces) {
   p.rho_final = 0.86;
   p.frames = 17;
   p.seed = 987654321987ull;
-  const RunInfo info = run_info(p, "sinks");
+  const RunInfo info = run_info(p, "sinks", "mu042");
 
   const RunInfo defaults;
   for_each_run_info_field([](const RunInfoField& field, const auto& value,
@@ -40,7 +40,8 @@ TEST(OutputSinks, RunInfoCarriesEveryParameterItAnnounces) {
                                .final_density = 0.86,
                                .frames = 17,
                                .seed = 987654321987ull,
-                               .config_json = to_json(p).dump()},
+                               .config_json = to_json(p).dump(),
+                               .ensemble = "mu042"},
                               info);
   EXPECT_EQ(nlohmann::json::parse(info.config_json).at("mu"), 0.42);
 }

@@ -217,6 +217,29 @@ TEST(Protocol, ResumeFromCheckpointIsBitwiseIdentical) {
   std::filesystem::remove(file);
 }
 
+// The ensemble is the checkpoint's last entry: a checkpoint written before it existed (the same
+// bytes without it) loads as one with no ensemble, and resumes to the same state.
+TEST(Protocol, CheckpointKeepsTheEnsembleAndOlderCheckpointsStillLoad) {
+  const Params p = small();
+  RunOptions o;
+  o.max_steps = 500;
+  Simulation s = make_lattice(p);
+  ASSERT_FALSE(run(s, o));
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "fnet_sim_ensemble.ckpt";
+  save_checkpoint(s, "mu05-s3", file, "mu05");
+  Restored with = load_checkpoint(file);
+  EXPECT_EQ(with.run_id, "mu05-s3");
+  EXPECT_EQ(with.ensemble, "mu05");
+  save_checkpoint(s, "old", file, "");
+  std::filesystem::resize_file(file, std::filesystem::file_size(file) - sizeof(std::uint64_t));  // no ensemble
+  Restored old = load_checkpoint(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(old.run_id, "old");
+  EXPECT_EQ(old.ensemble, "");
+  EXPECT_EQ(old.simulation.step, with.simulation.step);
+  EXPECT_EQ(old.simulation.x[0], with.simulation.x[0]);
+}
+
 TEST(Protocol, CsvExportIsWhatTheAnalysisReads) {
   const Params p = small();
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "fnet_sim_csv";
