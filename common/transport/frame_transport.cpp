@@ -115,16 +115,22 @@ void take_all(dds_entity_t reader, std::size_t max_samples, Sink sink) {
   }
 }
 
+// The two topics, created alike by the publisher and the subscriber.
+struct Topics {
+  dds_entity_t info, frame;
+};
+Topics create_topics(dds_entity_t participant) {
+  return {check(dds_create_topic(participant, &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr),
+                "dds_create_topic(RunInfo)"),
+          check(dds_create_topic(participant, &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr),
+                "dds_create_topic(ForceFrame)")};
+}
+
 }  // namespace
 
 FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blocking)
     : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
-  const dds_entity_t info_topic =
-      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr),
-            "dds_create_topic(RunInfo)");
-  const dds_entity_t frame_topic =
-      check(dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr),
-            "dds_create_topic(ForceFrame)");
+  const auto [info_topic, frame_topic] = create_topics(participant_.get());
   Qos qos;
   set_qos(qos, true, DDS_LENGTH_UNLIMITED);
   dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, max_blocking);
@@ -203,12 +209,7 @@ bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
 
 FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_buffered)
     : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
-  const dds_entity_t info_topic =
-      check(dds_create_topic(participant_.get(), &fnet_RunInfo_desc, kRunInfoTopic, nullptr, nullptr),
-            "dds_create_topic(RunInfo)");
-  const dds_entity_t frame_topic =
-      check(dds_create_topic(participant_.get(), &fnet_ForceFrame_desc, kFrameTopic, nullptr, nullptr),
-            "dds_create_topic(ForceFrame)");
+  const auto [info_topic, frame_topic] = create_topics(participant_.get());
   Qos info_qos, frame_qos;
   set_qos(info_qos, false, DDS_LENGTH_UNLIMITED);
   set_qos(frame_qos, false, max_frames_buffered);

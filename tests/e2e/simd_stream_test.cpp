@@ -46,6 +46,21 @@ std::vector<std::string> small_run(const std::string& run_id, int domain, const 
           "--quiet"};
 }
 
+// fnet-server on `domain` with its data and log under `dir`.
+Process start_server(const fs::path& dir, int domain) {
+  return Process(FNET_SERVER,
+                 {"--data-dir", (dir / "data").string(), "--port", "0", "--domain", std::to_string(domain)},
+                 dir / "server.log", dds_environment());
+}
+
+// The port of its "listening on 127.0.0.1:PORT" line, 0 if it never came.
+unsigned short listening_port(Process& server) {
+  const auto line = server.read_line(30s);
+  std::smatch m;
+  if (!line || !std::regex_search(*line, m, std::regex(":(\\d+) "))) return 0;
+  return static_cast<unsigned short>(std::stoi(m[1]));
+}
+
 TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
   testing::TempDir tmp;
   // The daemon starts first (no DDS in this process before the fork); the subscriber joins late
@@ -91,13 +106,9 @@ TEST(SimdStream, SubscriberReceivesEveryFrameBitExact) {
 // DDS (the server's run.get) and in the run file.
 TEST(SimdStream, EnsembleNameIsAnnouncedAndMakesTheRunId) {
   testing::TempDir tmp;
-  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "43"},
-                 tmp.path() / "server.log", dds_environment());
-  const auto line = server.read_line(30s);
-  ASSERT_TRUE(line);
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) ")));
-  const auto port = static_cast<unsigned short>(std::stoi(m[1]));
+  Process server = start_server(tmp.path(), 43);
+  const unsigned short port = listening_port(server);
+  ASSERT_NE(port, 0) << "see " << (tmp.path() / "server.log");
   std::vector<std::string> args = small_run("unused", 43, tmp.path() / "run.h5");
   for (const char* flag : {"--run-id", "--linger"}) {
     const auto at = std::find(args.begin(), args.end(), flag);
@@ -125,13 +136,9 @@ TEST(SimdStream, EnsembleNameIsAnnouncedAndMakesTheRunId) {
 
 TEST(SimdStream, ServerSeriesOfASimulatedRunEqualsOfflineAnalysisOfItsRunFile) {
   testing::TempDir tmp;
-  Process server(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "--domain", "42"},
-                 tmp.path() / "server.log", dds_environment());
-  const auto line = server.read_line(30s);
-  ASSERT_TRUE(line);
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) ")));
-  const auto port = static_cast<unsigned short>(std::stoi(m[1]));
+  Process server = start_server(tmp.path(), 42);
+  const unsigned short port = listening_port(server);
+  ASSERT_NE(port, 0) << "see " << (tmp.path() / "server.log");
   Process simd(FNET_SIMD, small_run("sim", 42, tmp.path() / "run.h5"), tmp.path() / "simd.log", dds_environment());
   client::RpcClient rpc("127.0.0.1", port);
   client::json run;
