@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,12 @@ struct RunSummary {
   double seconds_since_last_frame = 0;  // since last_activity, or since the server learned of the run
 };
 
+// Why a frame's force network cannot be had: names the run, the frame and the cause.
+class NetworkUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct Counters {
   std::size_t received = 0, analyzed = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0, malformed = 0;
 };
@@ -86,6 +93,9 @@ class Registry {
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
   std::string newest_run() const;
+  // The force network of a committed frame, read back from the run's store: the server keeps no
+  // network in memory beyond the frames in flight. Throws NetworkUnavailable.
+  Frame network(const std::string& run_id, std::uint32_t index) const;
 
   // Registers a listener; `backlog` receives, under the same lock, every committed point of
   // `run_id` (or of every run when empty) with frame index > since, so nothing is missed or
@@ -110,6 +120,7 @@ class Registry {
     std::optional<StoreTime> last_activity;
     StoreTime known_since = store_time_now();
     std::unique_ptr<StoreWriter> store;
+    std::string store_problem;  // why there is no store, or why it stopped taking frames
   };
   struct Subscription {
     std::string run_id;
