@@ -22,6 +22,7 @@ enum Code : int {
   kUnknownFrame = -32002,  // data.run, data.frame
   kTooManySubscriptions = -32003,
   kServerBusy = -32004,
+  kNoNetwork = -32005,  // data.run, data.frame, data.reason: the frame's force network is not stored
 };
 
 // Thrown by method handlers; becomes an error response with this code, message and data.
