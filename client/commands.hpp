@@ -9,5 +9,6 @@
 namespace fnet::client {
 
 int watch_command(const Endpoint& at, const std::vector<std::string>& args);
+int blocks_command(const Endpoint& at, const std::vector<std::string>& args);
 
 }  // namespace fnet::client

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -26,7 +27,7 @@ using client::json;
 using client::RpcClient;
 using namespace std::chrono_literals;
 
-constexpr int kDomain = 83;  // CONTRIBUTING.md: blocks 83-86
+constexpr int kDomain = 83;  // CONTRIBUTING.md: blocks 83-86 (84: the fnetctl test)
 
 // The run's frames: 0 the LAMMPS frame, 1 the same with the forces of the 20 contacts nearest
 // the top-left corner of its domain multiplied by 3, 2 the LAMMPS frame again. Top-left (row 1,
@@ -86,11 +87,11 @@ struct Server {
   unsigned short port = 0;
 };
 
-Server start_server(const fs::path& data_dir, const fs::path& log) {
+Server start_server(const fs::path& data_dir, const fs::path& log, int domain = kDomain) {
   Server s;
   s.process = std::make_unique<Process>(FNET_SERVER,
                                         std::vector<std::string>{"--data-dir", data_dir.string(), "--port", "0",
-                                                                 "--domain", std::to_string(kDomain), "--threads", "2"},
+                                                                 "--domain", std::to_string(domain), "--threads", "2"},
                                         log, dds_environment());
   const auto line = s.process->read_line(30s);
   if (!line) throw std::runtime_error("fnet-server did not start; see " + log.string());
@@ -222,6 +223,87 @@ TEST(BlocksService, ThePlantedCornerIsTheLargestBlockAndAnUnchangedFrameIsZeroAl
   EXPECT_EQ(data_out["frame"], 0);
   EXPECT_NE(message.find("run legacy-v1 frame 0"), std::string::npos) << message;
   EXPECT_NE(message.find("fnet-store-1"), std::string::npos) << message;
+}
+
+struct CliResult {
+  int code;
+  std::string out;
+};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+CliResult fnetctl(const fs::path& log, unsigned short port, std::vector<std::string> args) {
+  args.insert(args.begin(), {"--port", std::to_string(port)});
+  Process p(FNETCTL, args, log);
+  const auto code = p.wait(60s);
+  return {code.value_or(-1), p.read_rest()};
+}
+
+TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
+  testing::TempDir tmp;
+  const PlantedRun run = plant(testing::lammps_frame(10));
+  const fs::path csv = write_run(tmp.path() / "csv", run);
+  Server server = start_server(tmp.path() / "data", tmp.path() / "server.log", 84);
+  Process pub(
+      FNET_ANALYZE,
+      {"publish", "--csv-dir", csv.string(), "--run-id", "planted", "--domain", "84", "--wait-for-reader", "30"},
+      tmp.path() / "publish.log", dds_environment());
+  ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+  wait_for_frames(server.port, "planted", 3);
+  const fs::path log = tmp.path() / "fnetctl.log";
+  const std::vector<std::string> ask{"blocks", "--run",    "planted",      "--frame", "0", "--other-frame",
+                                     "1",      "--metric", "wasserstein2", "--k",     "2"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = ask;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return fnetctl(log, server.port, a);
+  };
+  const CliResult as_json = with({"--format", "json"});
+  ASSERT_EQ(as_json.code, 0) << as_json.out;
+  const json answer = json::parse(as_json.out);
+  EXPECT_EQ(answer["largest"]["row"], 1);
+  EXPECT_EQ(answer["largest"]["col"], 0);
+  // CSV: one row per cell, the values exactly the API's.
+  const CliResult as_csv = with({"--format", "csv"});
+  ASSERT_EQ(as_csv.code, 0);
+  std::istringstream lines(as_csv.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line.rfind("row,col,x_lo,", 0), 0u) << line;
+  std::size_t rows = 0;
+  while (std::getline(lines, line)) {
+    const json& cell = answer["cells"][rows++];
+    EXPECT_EQ(std::stod(line.substr(line.rfind(',') + 1)), cell["value"].get<double>()) << line;
+    EXPECT_EQ(
+        line.rfind(std::to_string(cell["row"].get<int>()) + "," + std::to_string(cell["col"].get<int>()) + ",", 0), 0u)
+        << line;
+  }
+  EXPECT_EQ(rows, 4u);
+  // The table marks the largest cell.
+  const CliResult table = with({});
+  ASSERT_EQ(table.code, 0);
+  std::size_t marked = 0;
+  for (std::istringstream t(table.out); std::getline(t, line);)
+    if (line.size() > 2 && line.substr(line.size() - 2) == " *") {
+      ++marked;
+      EXPECT_EQ(line.substr(0, 9), "   1    0") << line;
+    }
+  EXPECT_EQ(marked, 1u) << table.out;
+  // Usage errors exit 2 before asking the server; an unknown frame is exit 4.
+  for (const char* k : {"0", "17"}) {
+    const CliResult bad =
+        fnetctl(log, server.port, {"blocks", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", k});
+    EXPECT_EQ(bad.code, 2) << k;
+  }
+  EXPECT_NE(read_file(log).find("--k must be an integer from 1 to 16, got 17"), std::string::npos) << read_file(log);
+  EXPECT_EQ(with({"--format", "xml"}).code, 2);
+  EXPECT_EQ(fnetctl(log, server.port,
+                    {"blocks", "--run", "planted", "--frame", "0", "--other-frame", "7", "--metric", "bottleneck"})
+                .code,
+            4);
 }
 
 }  // namespace
