@@ -17,8 +17,8 @@ struct AnalyzedFrame {
   FrameDiagramSet diagrams;
   std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
   StepDistances distances;                // meaningful only with a previous frame
-  // The force network as received, for the store to keep; null once stored, or when unknown (a
-  // frame read back from a store).
+  // The force network as received, for the store to keep; null in the frames fnet-server keeps in
+  // memory (it reads networks back from the store) and in frames read back from a store.
   std::shared_ptr<const Frame> network;
 };
 
