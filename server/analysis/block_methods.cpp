@@ -49,13 +49,14 @@ json blocks_get(const Registry& registry, const json& params) {
   if (!registry.frame(run, frame_b)) unknown_frame(run, frame_b);
   const auto start = std::chrono::steady_clock::now();
   const Frame a = stored_network(registry, run, frame_a), b = stored_network(registry, run, frame_b);
-  std::vector<BlockCell> cells_a, cells_b;
-  try {
-    cells_a = split_into_blocks(a, k);
-    cells_b = split_into_blocks(b, k);
-  } catch (const std::invalid_argument& e) {  // a stored frame without grain positions
-    throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", frame_a}, {"reason", e.what()}});
-  }
+  const auto split = [&](const Frame& f, std::uint32_t index) {
+    try {
+      return split_into_blocks(f, k);
+    } catch (const std::invalid_argument& e) {  // a stored frame without its grains' positions
+      throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", index}, {"reason", e.what()}});
+    }
+  };
+  const std::vector<BlockCell> cells_a = split(a, frame_a), cells_b = split(b, frame_b);
   const std::vector<BlockDistance> d = block_distances(cells_a, cells_b, metric.distance(), dim, force, essential);
 
   json cells = json::array();
