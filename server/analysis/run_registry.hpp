@@ -93,8 +93,8 @@ class Registry {
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
   std::string newest_run() const;
-  // The force network of a committed frame, read back from the run's store: the server keeps no
-  // network in memory beyond the frames in flight. Throws NetworkUnavailable.
+  // The force network of a committed frame, read back from the run's store: the committed frames
+  // in memory hold their diagrams only. Throws NetworkUnavailable.
   Frame network(const std::string& run_id, std::uint32_t index) const;
 
   // Registers a listener; `backlog` receives, under the same lock, every committed point of
