@@ -112,7 +112,7 @@ int ensembles_command(RpcClient& rpc, const std::vector<std::string>& args) {
   std::string format = "table";
   o.add_options()("help,h", "show this help")(
       "format", po::value(&format)->default_value("table"),
-      "table, csv (exact numbers; columns ensemble,runs,frames,friction,particles,compression_speed,\n"
+      "table, csv (exact numbers; columns ensemble,runs,frames,friction,particles,compression_speed,"
       "rho_j,rho_j_stderr,rho_j_n,last_activity; runs joined by ';') or json (the API's answer)");
   if (!parse_command(o, args)) return kOk;
   format_option(format, {"table", "csv", "json"});

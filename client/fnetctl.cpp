@@ -191,7 +191,7 @@ int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
   std::string format = "table";
   o.add_options()("from", po::value(&from), "first frame index")("to", po::value(&to), "last frame index")(
       "format", po::value(&format)->default_value("table"),
-      "table, csv (exact numbers; columns frame,step,time,rho,z,previous,value, or for a binned curve\n"
+      "table, csv (exact numbers; columns frame,step,time,rho,z,previous,value, or for a binned curve "
       "rho_lo,rho_hi,rho,mean,stderr,n,z) or json (the API's answer)");
   po::variables_map vm;
   if (!parse_command(o, args, &vm)) return kOk;

@@ -121,10 +121,10 @@ try:
 
     print(f"ensemble.series over {a.runs} runs x {a.frames} frames ({samples} samples, {len(served['n'])} bins "
           f"of width {WIDTH}), {a.particles} disks")
-    print(f"{'measure':52} {'median / p99 (ms)':>20}")
+    print(f"{'measure':64} {'median / p99 (ms)':>20}")
     for name, (median, p99) in ours:
-        print(f"{'fnet-server ensemble.series: ' + name:52} {median:9.2f} / {p99:7.2f}")
-    print(f"{'anchor: numpy + h5py from the stores, same bins':52} {anchor[0]:9.2f} / {anchor[1]:7.2f}")
+        print(f"{'fnet-server ensemble.series: ' + name:64} {median:9.2f} / {p99:7.2f}")
+    print(f"{'anchor: numpy + h5py from the stores, same bins':64} {anchor[0]:9.2f} / {anchor[1]:7.2f}")
     print(f"goal: < 50 ms; numpy's bins match the served ones (largest difference {worst:.1e})")
 finally:
     if server:
