@@ -90,9 +90,11 @@ void print_curve_table(const json& r) {
     for (const json& run : r["runs_without_rho_j"]) std::cout << " " << run.get<std::string>();
     std::cout << "\n";
   }
-  const char* x = shifted ? "rho-rho_J" : "rho";
-  std::cout << std::setw(11) << (std::string(x) + "_lo") << std::setw(11) << (std::string(x) + "_hi") << std::setw(11)
-            << x << std::setw(16) << "mean" << std::setw(12) << "stderr" << std::setw(6) << "n" << std::setw(8) << "Z"
+  // drho: rho - rho_J, named short so that the columns stay apart.
+  const std::string x = shifted ? "drho" : "rho";
+  if (shifted) std::cout << "drho = rho - rho_J\n";
+  std::cout << std::setw(11) << (x + "_lo") << std::setw(11) << (x + "_hi") << std::setw(11) << x << std::setw(16)
+            << "mean" << std::setw(12) << "stderr" << std::setw(6) << "n" << std::setw(8) << "Z"
             << "\n";
   for (std::size_t k = 0; k < r["n"].size(); ++k)
     std::cout << std::setw(11) << cell(r["rho_lo"][k], 6) << std::setw(11) << cell(r["rho_hi"][k], 6) << std::setw(11)

@@ -166,7 +166,9 @@ void print_series_table(const json& r) {
             << (r.contains("q") && r["metric"] == "wasserstein" ? " q=" + exact_number(r["q"].get<double>()) : "")
             << ", PD" << r["dim"].get<int>() << ", " << r["force"].get<std::string>()
             << " forces, essential=" << r["essential"].get<std::string>()
-            << "; value[k] = distance from the previous frame (-: none; inf: infinite)\n"
+            << (r.contains("ratio") ? "; value[k] = d_B / d_Wq of the step from the previous frame"
+                                    : "; value[k] = distance from the previous frame")
+            << " (-: none; inf: infinite)\n"
             << std::setw(7) << "frame" << std::setw(11) << "rho" << std::setw(9) << "Z" << std::setw(16) << "value"
             << "\n";
   for (std::size_t k = 0; k < r["frame"].size(); ++k)
