@@ -22,7 +22,8 @@ enum Code : int {
   kUnknownFrame = -32002,  // data.run, data.frame
   kTooManySubscriptions = -32003,
   kServerBusy = -32004,
-  kNoNetwork = -32005,  // data.run, data.frame, data.reason: the frame's force network is not stored
+  kNoNetwork = -32005,        // data.run, data.frame, data.reason: the frame's force network is not stored
+  kUnknownEnsemble = -32006,  // data.ensemble: the ensemble named, which no announced run belongs to
 };
 
 // Thrown by method handlers; becomes an error response with this code, message and data.

@@ -18,12 +18,15 @@
 #include "common/codec/run_info_json.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/block_methods.hpp"
+#include "server/analysis/ensemble_methods.hpp"
 
 namespace fnet::server {
 namespace {
 
 using json = nlohmann::json;
 using rpc::Error;
+
+// ---- runs ------------------------------------------------------------------------------------
 
 json summary_json(const RunSummary& s) {
   json out = {{"run", s.run_id},
@@ -319,12 +322,13 @@ MethodTable method_table(ApiContext& ctx) {
   const auto plain = [](auto fn) {
     return [fn](const json& params, const std::shared_ptr<rpc::Session>&) { return fn(params); };
   };
-  return {
+  MethodTable table{
       {"runs.list", {{}, plain([&registry](const json&) { return runs_list(registry); })}},
       {"run.get", {{"run"}, plain([&registry](const json& p) { return run_get(registry, p); })}},
       {"series.get",
-       {{"metric", "q", "run", "dim", "force", "essential", "from", "to"},
-        plain([&registry](const json& p) { return series_get(registry, p); })}},
+       {{"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"}, plain([&registry](const json& p) {
+          return find(p, "ratio") ? series_ratio_get(registry, p) : series_get(registry, p);
+        })}},
       {"diagram.get",
        {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
       {"distance.get",
@@ -345,6 +349,8 @@ MethodTable method_table(ApiContext& ctx) {
         }}},
       {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
   };
+  for (auto& [name, method] : ensemble_methods(ctx)) table.emplace(name, Method{method.params, method.run});
+  return table;
 }
 
 // The params as an object, every name one the method accepts: a typo ("dimension") is an error,
