@@ -156,7 +156,7 @@ int run_as_ensemble(const po::parsed_options& parsed, const po::variables_map& v
       if (!differ.empty() || saved.run_id != r.run_id || saved.ensemble != ensemble)
         throw po::error("--seeds: the checkpoint " + r.checkpoint.string() + " of " + r.run_id +
                         " holds another run (" + (differ.empty() ? "run id or ensemble" : differ) +
-                        " differ): give the command that started it, or delete it to start that seed over");
+                        " differ): rerun the command that made it, or delete it to start that seed over");
       r.complete = saved.simulation.phase == Phase::done;
       r.resume = !r.complete;
       r.first_frame = saved.simulation.phase == Phase::relax ? 0 : saved.simulation.next_frame;
