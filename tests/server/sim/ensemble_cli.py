@@ -59,7 +59,7 @@ def run(*args, timeout=300):
 
 
 def csv_files(directory):
-    return sorted(f for f in os.listdir(directory) if f.endswith(".csv"))
+    return sorted(f for f in os.listdir(directory) if f.endswith(".csv")) if os.path.isdir(directory) else []
 
 
 def same_csv(a, b):
