@@ -4,13 +4,14 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <optional>
+#include <stdexcept>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <utility>
@@ -48,22 +49,19 @@ struct Child {
   std::size_t frames_done = 0;
 };
 
+// One line per state change of a realization, stamped with the seconds since the ensemble began.
 class Reporter {
  public:
-  explicit Reporter(std::string name) : name_(std::move(name)), start_(Clock::now()) {}
   template <class... A>
   void line(const Realization& r, const char* format, A... args) {
     const double t = std::chrono::duration<double>(Clock::now() - start_).count();
-    std::string text(512, '\0');
-    const int n = std::snprintf(text.data(), text.size(), format, args...);
-    text.resize(static_cast<std::size_t>(std::max(n, 0)));
+    std::string text(static_cast<std::size_t>(std::max(std::snprintf(nullptr, 0, format, args...), 0)) + 1, '\0');
+    std::snprintf(text.data(), text.size(), format, args...);
     std::fprintf(stderr, "fnet-simd: [%7.1fs] %s: %s\n", t, r.run_id.c_str(), text.c_str());
   }
-  const std::string& name() const { return name_; }
 
  private:
-  std::string name_;
-  Clock::time_point start_;
+  Clock::time_point start_ = Clock::now();
 };
 
 std::string last_line(const std::filesystem::path& log) {
@@ -151,7 +149,7 @@ bool read_events(Child& c, Reporter& out, bool frame_lines) {
 
 int run_ensemble(const std::string& name, const std::vector<Realization>& runs, unsigned jobs, bool frame_lines,
                  const std::atomic<bool>& stop) {
-  Reporter out(name);
+  Reporter out;
   std::vector<Child> running;
   std::vector<std::string> failed, stopped;
   std::size_t next = 0, finished = 0, skipped = 0, not_started = 0;

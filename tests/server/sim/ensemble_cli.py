@@ -8,7 +8,8 @@
                  /proc while it runs), and --jobs of them do run together
   interrupt      SIGINT to the parent mid-ensemble: every running child stops, each leaving its
                  checkpoint, the parent exits 130; the same command resumes the stopped ones, skips
-                 the finished ones, and the results equal an uninterrupted ensemble byte for byte
+                 the finished ones (and stops on SIGTERM likewise); run to its end, the results
+                 equal an uninterrupted ensemble byte for byte
   failure        a realization that fails is named with its exit code, the others finish, exit 1
   server         a real fnet-server receives every realization announced with the ensemble's name
 
@@ -244,9 +245,17 @@ if case == "interrupt":
         check(os.path.exists(os.path.join(work, "cut", run_id, "checkpoint.fnetsim")), f"{run_id} left its checkpoint")
     check(any("not started" in line for line in ens.lines), "the summary counts what was stopped and not started")
 
+    # The same command again, itself stopped by SIGTERM once it made progress; then a third time.
     again = Ensemble(*args, "--export-csv", "cut/{run}")
-    rc = again.wait()
-    check(rc == 0, f"the same command again exits 0 ({rc}): {again.lines[-1:]}")
+    while again.proc.poll() is None and not any(w.startswith("frame ") for _, _, w in again.events()):
+        time.sleep(0.01)
+    again.proc.send_signal(signal.SIGTERM)
+    rc = again.wait(120)
+    check(rc == 130 and any(w.startswith("stopped") for _, _, w in again.events()),
+          f"SIGTERM stops the rerun as SIGINT does: exit 130 ({rc}): {again.lines[-1:]}")
+    last = Ensemble(*args, "--export-csv", "cut/{run}")
+    rc = last.wait()
+    check(rc == 0, f"the same command a third time exits 0 ({rc}): {last.lines[-1:]}")
     said = {run_id: what for _, run_id, what in again.events() if not what.startswith("frame ")}
     for run_id in finished:
         check(said.get(run_id, "").startswith("already finished"), f"{run_id} is not run again: {said.get(run_id)}")
