@@ -10,6 +10,7 @@
                  checkpoint, the parent exits 130; the same command resumes the stopped ones, skips
                  the finished ones (and stops on SIGTERM likewise); run to its end, the results
                  equal an uninterrupted ensemble byte for byte
+  parent_killed  SIGKILL to the parent: its children stop at their checkpoints by themselves
   failure        a realization that fails is named with its exit code, the others finish, exit 1
   server         a real fnet-server receives every realization announced with the ensemble's name
 
@@ -167,6 +168,27 @@ if case == "equals_single":
               "--export-csv", "ens/{run}")
     check(res.returncode == 2 and "mu" in res.stderr and "started (pid" not in res.stderr,
           f"other parameters over its checkpoints: exit 2 naming mu ({res.returncode}: {res.stderr.strip()})")
+    finish()
+
+if case == "parent_killed":
+    # SIGKILL gives the parent no chance to stop anything: its children stop themselves, cleanly.
+    args = [*SLOW, "--no-dds", "--ensemble", "orph", "--seeds", "1-2", "--jobs", "2", "--export-csv", "k/{run}"]
+    ens = Ensemble(*args)
+    while ens.proc.poll() is None and sum(w.startswith("frame ") for _, _, w in ens.events()) < 2:
+        time.sleep(0.01)
+    pids = started_pids(ens.events())
+    ens.proc.kill()
+    ens.wait()
+    deadline = time.monotonic() + 60
+    while any(alive(p) for p in pids.values()) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    check(len(pids) == 2 and not any(alive(p) for p in pids.values()), "the children of a killed parent exit")
+    for run_id in pids:
+        with open(os.path.join(work, "k", run_id, "checkpoint.log")) as f:
+            log = f.read()
+        check("stopped at step" in log and "frames 10/10" not in log, f"{run_id} stopped mid-run at a checkpoint")
+    again = Ensemble(*args)
+    check(again.wait() == 0, f"the same command finishes them: {again.lines[-1:]}")
     finish()
 
 if case == "failure":
