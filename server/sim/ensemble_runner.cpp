@@ -209,7 +209,8 @@ int run_ensemble(const std::string& name, const std::vector<Realization>& runs, 
           std::snprintf(why, sizeof why, "exit %d", WEXITSTATUS(status));
         else
           std::snprintf(why, sizeof why, "killed by signal %d", WTERMSIG(status));
-        out.line(r, "failed (%s): %s (log %s)", why, last_line(r.log).c_str(), r.log.c_str());
+        const std::string said = last_line(r.log);
+        out.line(r, "failed (%s)%s%s (log %s)", why, said.empty() ? "" : ": ", said.c_str(), r.log.c_str());
         failed.push_back(r.run_id + " (" + why + ")");
       }
       it = running.erase(it);

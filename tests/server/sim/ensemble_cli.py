@@ -10,6 +10,7 @@
                  checkpoint, the parent exits 130; the same command resumes the stopped ones, skips
                  the finished ones (and stops on SIGTERM likewise); run to its end, the results
                  equal an uninterrupted ensemble byte for byte
+  stop_at_start  SIGINT while the realizations start: each still stops at a checkpoint
   parent_killed  SIGKILL to the parent: its children stop at their checkpoints by themselves
   failure        a realization that fails is named with its exit code, the others finish, exit 1
   server         a real fnet-server receives every realization announced with the ensemble's name
@@ -187,6 +188,24 @@ if case == "parent_killed":
         with open(os.path.join(work, "k", run_id, "checkpoint.log")) as f:
             log = f.read()
         check("stopped at step" in log and "frames 10/10" not in log, f"{run_id} stopped mid-run at a checkpoint")
+    again = Ensemble(*args)
+    check(again.wait() == 0, f"the same command finishes them: {again.lines[-1:]}")
+    finish()
+
+if case == "stop_at_start":
+    # A stop that lands while the realizations are still starting (before their handlers are set)
+    # is kept until they can take it: they stop at a checkpoint rather than die by the signal.
+    args = [*SLOW, "--domain", "80", "--ensemble", "early", "--seeds", "1-2", "--jobs", "2", "--export-csv", "e/{run}"]
+    ens = Ensemble(*args)
+    while ens.proc.poll() is None and len(started_pids(ens.events())) < 2:
+        time.sleep(0.001)
+    ens.proc.send_signal(signal.SIGINT)
+    rc = ens.wait(120)
+    said = {run_id: what for _, run_id, what in ens.events()}
+    check(rc == 130, f"exit 130 ({rc}): {ens.lines[-1:]}")
+    for run_id in ("early-s1", "early-s2"):
+        check(said.get(run_id, "").startswith("stopped (exit 130)"), f"{run_id} stopped cleanly: {said.get(run_id)}")
+        check(os.path.exists(os.path.join(work, "e", run_id, "checkpoint.fnetsim")), f"{run_id} left its checkpoint")
     again = Ensemble(*args)
     check(again.wait() == 0, f"the same command finishes them: {again.lines[-1:]}")
     finish()
