@@ -93,16 +93,19 @@ Child spawn(const Realization& r) {
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t parent = ::getpid();
+  // The stop signals are blocked from before the fork (a signal taken between fork and exec would
+  // run the parent's handler in the child's copy and be lost with it) and stay blocked across exec
+  // until the child has its handlers: a stop sent right after the start is then a clean stop.
+  sigset_t stops, before;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stops, &before);
   const pid_t pid = ::fork();
+  if (pid != 0) sigprocmask(SIG_SETMASK, &before, nullptr);
   if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   if (pid == 0) {
-    // Only async-signal-safe calls until exec. The stop signals stay blocked across exec until
-    // the child has its handlers, so that a stop sent right after the start is a clean stop.
-    sigset_t stops;
-    sigemptyset(&stops);
-    sigaddset(&stops, SIGINT);
-    sigaddset(&stops, SIGTERM);
-    sigprocmask(SIG_BLOCK, &stops, nullptr);
+    // Only async-signal-safe calls until exec.
     // A parent that dies (even by SIGKILL) stops its children cleanly rather than orphaning them.
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) ::_exit(130);

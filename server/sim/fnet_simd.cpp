@@ -162,12 +162,13 @@ int run_as_ensemble(const po::parsed_options& parsed, const po::variables_map& v
       r.first_frame = saved.simulation.phase == Phase::relax ? 0 : saved.simulation.next_frame;
     }
     // What the child is given: the user's flags as typed, with its paths; a resumed one takes its
-    // parameters from its checkpoint, as --resume demands.
+    // parameters from its checkpoint, as --resume demands, and its initial state was written when
+    // it started (--write-lammps-data would now write the resumed state over it).
     for (const po::option& o : parsed.options) {
       const std::string& key = o.string_key;
       if (key == "seeds" || key == "jobs" || key == "checkpoint" || key == "events-fd") continue;
-      if (r.resume &&
-          (key == "config" || std::find(physics_flags.begin(), physics_flags.end(), key) != physics_flags.end()))
+      if (r.resume && (key == "config" || key == "write-lammps-data" ||
+                       std::find(physics_flags.begin(), physics_flags.end(), key) != physics_flags.end()))
         continue;
       r.args.push_back("--" + key);
       for (const std::string& v : o.value) r.args.push_back(expand_path_template(v, r.run_id, seed));

@@ -195,7 +195,9 @@ if case == "parent_killed":
 if case == "stop_at_start":
     # A stop that lands while the realizations are still starting (before their handlers are set)
     # is kept until they can take it: they stop at a checkpoint rather than die by the signal.
-    args = [*SLOW, "--domain", "80", "--ensemble", "early", "--seeds", "1-2", "--jobs", "2", "--export-csv", "e/{run}"]
+    args = [*SLOW, "--domain", "80", "--ensemble", "early", "--seeds", "1-2", "--jobs", "2", "--export-csv", "e/{run}",
+            "--write-lammps-data", "lmp/{run}.data"]
+    os.makedirs(os.path.join(work, "lmp"))
     ens = Ensemble(*args)
     while ens.proc.poll() is None and len(started_pids(ens.events())) < 2:
         time.sleep(0.001)
@@ -206,8 +208,13 @@ if case == "stop_at_start":
     for run_id in ("early-s1", "early-s2"):
         check(said.get(run_id, "").startswith("stopped (exit 130)"), f"{run_id} stopped cleanly: {said.get(run_id)}")
         check(os.path.exists(os.path.join(work, "e", run_id, "checkpoint.fnetsim")), f"{run_id} left its checkpoint")
+    def initial_states():
+        return [open(os.path.join(work, "lmp", f"early-s{k}.data"), "rb").read() for k in (1, 2)]
+
+    written = initial_states()
     again = Ensemble(*args)
     check(again.wait() == 0, f"the same command finishes them: {again.lines[-1:]}")
+    check(initial_states() == written, "the resumed realizations leave their initial states (--write-lammps-data) as written")
     finish()
 
 if case == "failure":
