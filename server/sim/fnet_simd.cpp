@@ -1,5 +1,9 @@
 // fnet-simd: the simulation daemon. Runs the paper's compression protocol and hands every frame
 // to the sinks selected on the command line.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -11,6 +15,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -19,6 +24,8 @@
 #include "common/store/analysis_store.hpp"
 #include "server/sim/checkpoint.hpp"
 #include "server/sim/csv_export.hpp"
+#include "server/sim/ensemble_plan.hpp"
+#include "server/sim/ensemble_runner.hpp"
 #include "server/sim/lammps_data.hpp"
 #include "server/sim/output_sinks.hpp"
 #include "server/sim/protocol.hpp"
@@ -79,11 +86,123 @@ constexpr const char* kUsage =
     "is saved after every frame, every --checkpoint-interval seconds and on SIGINT/SIGTERM;\n"
     "--resume continues from it and produces frames bitwise identical to an uninterrupted run.\n"
     "\n"
+    "Ensembles: --ensemble NAME --seeds 1-20 --jobs 2 runs one realization per seed (run ids NAME-sSEED),\n"
+    "at most --jobs at a time, each a child fnet-simd doing a single run as above with the other flags.\n"
+    "Each realization needs files of its own: --out, --export-csv, --checkpoint and --write-lammps-data\n"
+    "must hold {run} (the run id) or {seed}, e.g. --out runs/{run}.h5. Its checkpoint is the one named,\n"
+    "else checkpoint.fnetsim in its CSV folder, else {run}.fnetsim; its stderr goes to the checkpoint's\n"
+    "name with .log. Progress is one line per realization and change (started, frame K/N, finished,\n"
+    "stopped, failed with its exit code). SIGINT/SIGTERM stops every running realization at its\n"
+    "checkpoint (exit 130); the same command again resumes those and skips the ones whose checkpoint\n"
+    "holds the last frame. Exit 1 when any realization failed (named), 2 for a bad command line.\n"
+    "Threads: each realization takes --threads (default 1), so --jobs x --threads in all.\n"
+    "\n"
     "options";
+
+// The flags that hold a path: in an ensemble each must name every realization's own file.
+constexpr const char* kPathFlags[] = {"out", "export-csv", "checkpoint", "write-lammps-data"};
+
+// The checkpoint a realization's parameters and its completion are read from.
+std::string realization_checkpoint(const po::variables_map& vm, const std::string& run_id, std::uint64_t seed) {
+  if (vm.count("checkpoint")) return expand_path_template(vm["checkpoint"].as<std::string>(), run_id, seed);
+  if (vm.count("export-csv"))
+    return (fs::path(expand_path_template(vm["export-csv"].as<std::string>(), run_id, seed)) / "checkpoint.fnetsim")
+        .string();
+  return run_id + ".fnetsim";
+}
+
+// --seeds: plans every realization (all command-line problems, each seed's start and any checkpoint
+// against this command's parameters are checked before the first child starts), then runs them.
+int run_as_ensemble(const po::parsed_options& parsed, const po::variables_map& vm, const Params& p,
+                    const std::string& ensemble, const std::vector<std::string>& physics_flags) {
+  if (ensemble.empty()) throw po::error("--seeds needs --ensemble NAME (the realizations are NAME-sSEED)");
+  for (const auto& [flag, why] : {std::pair{"seed", "each realization takes its seed from --seeds"},
+                                  std::pair{"run-id", "the realizations are NAME-sSEED"},
+                                  std::pair{"resume", "the ensemble resumes its interrupted realizations by itself"},
+                                  std::pair{"show-params", "it shows one run: give --seed instead"}})
+    if (vm.count(flag)) throw po::error(std::string("--") + flag + " cannot be given with --seeds: " + why);
+  const unsigned jobs = vm["jobs"].as<unsigned>();
+  if (jobs < 1 || jobs > 256) throw po::error("--jobs must be between 1 and 256");
+  std::vector<std::uint64_t> seeds;
+  try {
+    seeds = parse_seed_list(vm["seeds"].as<std::string>());
+  } catch (const std::invalid_argument& e) {
+    throw po::error(std::string("--seeds: ") + e.what());
+  }
+  for (const char* flag : kPathFlags)
+    if (vm.count(flag) && !names_each_realization(vm[flag].as<std::string>()))
+      throw po::error(std::string("--") + flag + " " + vm[flag].as<std::string>() +
+                      ": in an ensemble every realization needs its own; put {run} or {seed} in it");
+
+  std::vector<Realization> runs;
+  for (const std::uint64_t seed : seeds) {
+    Realization r;
+    r.seed = seed;
+    r.run_id = realization_run_id(ensemble, seed);
+    if (const std::string problem = fnet::run_id_problem(r.run_id); !problem.empty())
+      throw po::error("--ensemble: the run id it makes, " + problem);
+    Params ps = p;
+    ps.seed = seed;
+    const Params planned = make_lattice(ps).params;  // checks the start each seed makes
+    r.frames = planned.frames;
+    r.checkpoint = realization_checkpoint(vm, r.run_id, seed);
+    r.log = fs::path(r.checkpoint).replace_extension(".log");
+    if (fs::exists(r.checkpoint)) {
+      const Restored saved = load_checkpoint(r.checkpoint);
+      const nlohmann::json had = to_json(saved.simulation.params), wants = to_json(planned);
+      std::string differ;
+      for (const auto& [key, value] : wants.items())
+        if (!had.contains(key) || had[key] != value) differ += (differ.empty() ? "" : ", ") + key;
+      if (!differ.empty() || saved.run_id != r.run_id || saved.ensemble != ensemble)
+        throw po::error("--seeds: the checkpoint " + r.checkpoint.string() + " of " + r.run_id +
+                        " holds another run (" + (differ.empty() ? "run id or ensemble" : differ) +
+                        " differ): rerun the command that made it, or delete it to start that seed over");
+      r.complete = saved.simulation.phase == Phase::done;
+      r.resume = !r.complete;
+      r.first_frame = saved.simulation.phase == Phase::relax ? 0 : saved.simulation.next_frame;
+    }
+    // What the child is given: the user's flags as typed, with its paths; a resumed one takes its
+    // parameters from its checkpoint, as --resume demands, and its initial state was written when
+    // it started (--write-lammps-data would now write the resumed state over it).
+    for (const po::option& o : parsed.options) {
+      const std::string& key = o.string_key;
+      if (key == "seeds" || key == "jobs" || key == "checkpoint" || key == "events-fd") continue;
+      if (r.resume && (key == "config" || key == "write-lammps-data" ||
+                       std::find(physics_flags.begin(), physics_flags.end(), key) != physics_flags.end()))
+        continue;
+      r.args.push_back("--" + key);
+      for (const std::string& v : o.value) r.args.push_back(expand_path_template(v, r.run_id, seed));
+    }
+    if (r.resume)
+      r.args.push_back("--resume");
+    else
+      r.args.insert(r.args.end(), {"--seed", std::to_string(seed)});
+    r.args.insert(r.args.end(), {"--checkpoint", r.checkpoint.string()});
+    runs.push_back(std::move(r));
+  }
+  for (const Realization& r : runs)
+    if (!r.log.parent_path().empty()) fs::create_directories(r.log.parent_path());
+  const unsigned threads = vm["threads"].as<unsigned>();
+  if (const unsigned cores = std::thread::hardware_concurrency(); cores > 0 && jobs * threads > cores)
+    std::fprintf(stderr, "fnet-simd: note: --jobs %u x --threads %u = %u threads on %u cores\n", jobs, threads,
+                 jobs * threads, cores);
+  return run_ensemble(ensemble, runs, jobs, !vm.count("quiet"), g_stop);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) try {
+  // Handlers first: an ensemble starts its realizations with these signals blocked, so that a stop
+  // that comes while one is starting is kept until here and then ends it cleanly at a checkpoint.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  {
+    sigset_t stops;
+    sigemptyset(&stops);
+    sigaddset(&stops, SIGINT);
+    sigaddset(&stops, SIGTERM);
+    sigprocmask(SIG_UNBLOCK, &stops, nullptr);
+  }
   const Params defaults;
   po::options_description options(kUsage);
   std::string config, export_dir, checkpoint_path, run_id, ensemble, lammps_data, out_file;
@@ -121,9 +240,19 @@ int main(int argc, char** argv) try {
       "resume", "continue the run saved in the checkpoint file (its parameters are used)")(
       "write-lammps-data", po::value(&lammps_data), "write the initial state as a LAMMPS data file, then run")(
       "show-params", "print the parameters and derived constants as JSON and exit")("quiet,q",
-                                                                                    "no progress reports on stderr");
+                                                                                    "no progress reports on stderr")(
+      "seeds", po::value<std::string>(),
+      "run an ensemble (needs --ensemble): one realization per seed, a list of seeds and ranges such as 1-20 or "
+      "1,3,5-7")("jobs", po::value<unsigned>()->default_value(1), "with --seeds: realizations run at once");
+  // Set by the ensemble that started this run: "frame K" is written there after each frame.
+  int events_fd = -1;
+  po::options_description hidden;
+  hidden.add_options()("events-fd", po::value(&events_fd));
+  po::options_description all;
+  all.add(options).add(hidden);
   po::variables_map vm;
-  po::store(po::parse_command_line(argc, argv, options), vm);
+  const po::parsed_options parsed = po::parse_command_line(argc, argv, all);
+  po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << options << "\n";
     return 0;
@@ -156,6 +285,8 @@ int main(int argc, char** argv) try {
       throw po::error("--ensemble: " + problem);
   }
   if (threads < 1 || threads > 256) throw po::error("--threads must be between 1 and 256");
+  if (vm.count("seeds")) return run_as_ensemble(parsed, vm, p, ensemble, flags);
+  if (!vm["jobs"].defaulted()) throw po::error("--jobs needs --seeds (it runs the realizations of an ensemble)");
   const bool resume = vm.count("resume") > 0;
   // The start is built before anything is written: it checks what needs the grains (the box
   // against the lattice, rho_final against the start's packing fraction).
@@ -222,10 +353,16 @@ int main(int argc, char** argv) try {
   if (publish) dds.emplace(static_cast<dds_domainid_t>(domain), info);
   // Frames only DDS carries are lost unless a subscriber takes them before fnet-simd exits.
   const bool dds_only = dds && export_dir.empty() && !run_file;
-  if (!export_dir.empty() || run_file || dds)
+  if (events_fd >= 0) std::signal(SIGPIPE, SIG_IGN);  // a parent gone is no reason to die mid-frame
+  const auto report_frame = [events_fd](const FrameSnapshot& f) {
+    if (events_fd < 0) return;
+    const std::string line = "frame " + std::to_string(f.index + 1) + "\n";
+    (void)!::write(events_fd, line.data(), line.size());
+  };
+  if (!export_dir.empty() || run_file || dds || events_fd >= 0)
     o.sink = [&, dir = fs::path(export_dir)](const FrameSnapshot& f) {
       if (!dir.empty()) write_frame_csv(dir, f);
-      if (!run_file && !dds) return;
+      if (!run_file && !dds) return report_frame(f);
       const fnet::RunFrame frame = run_frame(f);  // once for both outputs
       if (run_file) (*run_file)(frame);
       if (dds) {
@@ -235,6 +372,7 @@ int main(int argc, char** argv) try {
                        "fnet-simd: warning: no DDS subscriber matched and no --out or --export-csv: frames are kept "
                        "for late subscribers only until fnet-simd exits (--linger)\n");
       }
+      report_frame(f);
     };
   o.relaxed = [](const Relaxation& r) {  // once per run, also with --quiet
     if (r.capped)
@@ -252,8 +390,6 @@ int main(int argc, char** argv) try {
   }
   if (!vm.count("quiet")) o.progress = print_progress;
   o.should_stop = [] { return g_stop.load(); };
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
 
   const std::int64_t steps_before = sim.step;
   const auto started = std::chrono::steady_clock::now();
