@@ -15,6 +15,7 @@
 #include "common/codec/explain_json.hpp"
 #include "common/codec/frame_csv.hpp"
 #include "tests/support/child_process.hpp"
+#include "tests/support/doc_names.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::testing {
@@ -166,6 +167,28 @@ TEST_F(ExplainCli, InvalidFrameExitsOneNamingTheFile) {
   const auto bad = write("self_contact.csv", "i,j,fn,ft\n0,1,1,1\n2,2,1,1\n");
   EXPECT_THAT(fails_with(1, {"explain", contacts_of(4), bad.string(), "--metric", "bottleneck"}),
               HasSubstr("self_contact.csv"));
+}
+
+// proto/api.md's example, run as it is written (paths relative to the repository): the same
+// output but for the time taken.
+TEST_F(ExplainCli, TheApiDocumentsExampleRuns) {
+  const std::filesystem::path source(FNET_SOURCE_DIR);
+  const std::string doc = read_text(source / "proto" / "api.md");
+  const std::string prompt = "$ fnet-analyze explain ";
+  const std::size_t at = doc.find(prompt);
+  ASSERT_NE(at, std::string::npos) << "no example of fnet-analyze explain";
+  const std::size_t line_end = doc.find('\n', at), out_end = doc.find('\n', line_end + 1);
+  std::istringstream words(doc.substr(at + 2, line_end - at - 2));
+  std::vector<std::string> args;
+  for (std::string w; words >> w;) args.push_back(w.rfind("tests/", 0) == 0 ? (source / w).string() : w);
+  ASSERT_EQ(args.at(0), "fnet-analyze");
+  args.erase(args.begin());
+  nlohmann::json documented = nlohmann::json::parse(doc.substr(line_end + 1, out_end - line_end - 1));
+  nlohmann::json printed = json_of(args);
+  ASSERT_TRUE(printed.contains("seconds"));
+  documented.erase("seconds");
+  printed.erase("seconds");
+  EXPECT_EQ(printed, documented);
 }
 
 }  // namespace
