@@ -86,6 +86,9 @@ class ThresholdMatcher {
     return v;
   }
 
+  // The current matching: per point of A its mate in B, or -1 (the diagonal).
+  const std::vector<std::int64_t>& mates_of_a() const { return a_.mate; }
+
  private:
   // Unmatched forced points of s take any unmatched point of o within r: with the matched points
   // hidden from the tree this is cheap, and it spares the searches below (thousands of duplicate
@@ -138,10 +141,14 @@ std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
 }  // namespace
 
-DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const BottleneckParams& params) {
+DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const BottleneckParams& params,
+                                   DiagramMatching* matching) {
   if (!(params.relative_error >= 0) || !std::isfinite(params.relative_error))
     throw std::invalid_argument("bottleneck: relative error must be finite and >= 0");
-  ConventionView va = apply_convention(a, params.essential), vb = apply_convention(b, params.essential);
+  if (matching) *matching = {};
+  ViewSources sa, sb;
+  ConventionView va = view_for(a, params.essential, matching ? &sa : nullptr),
+                 vb = view_for(b, params.essential, matching ? &sb : nullptr);
   DistanceResult result;
   if (params.essential == EssentialConvention::separate) {
     if (std::string why = essential_count_mismatch(va, vb); !why.empty()) {
@@ -155,18 +162,26 @@ DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const Bot
   for (std::size_t k = 0; k < va.essential_births.size(); ++k)
     essential = std::max(essential, std::fabs(va.essential_births[k] - vb.essential_births[k]));
 
-  ThresholdMatcher matcher(std::move(va.points), std::move(vb.points));
+  // The matcher takes the points; a matching asked for needs them afterwards.
+  ThresholdMatcher matcher(matching ? std::vector(va.points) : std::move(va.points),
+                           matching ? std::vector(vb.points) : std::move(vb.points));
   double lo = matcher.nearest_lower_bound(), hi = matcher.all_to_diagonal();
+  // The matching whose bottleneck is hi: all to the diagonal until a better one is found.
+  std::vector<std::int64_t> best(matching ? va.points.size() : 0, -1);
+  const auto found = [&] {
+    hi = matcher.value();
+    if (matching) best = matcher.mates_of_a();
+  };
   const double rel = params.relative_error;
   auto done = [&] { return hi <= lo || (rel > 0 && hi <= (1 + rel) * lo) || hi <= essential; };
   if (!done()) {
-    if (matcher.feasible(lo)) hi = matcher.value();
+    if (matcher.feasible(lo)) found();
   }
   // Invariant: lo is infeasible (or lo == hi), hi is the bottleneck of a matching found.
   while (!done() && bits(hi) - bits(lo) > 1) {
     const double mid = std::bit_cast<double>(bits(lo) + (bits(hi) - bits(lo)) / 2);
     if (matcher.feasible(mid))
-      hi = matcher.value();
+      found();
     else
       lo = mid;
   }
@@ -176,6 +191,22 @@ DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const Bot
   result.exact = (rel == 0) || result.lower == result.upper;
   if (rel == 0) result.lower = result.upper;
   result.value = result.upper;
+  if (matching) {
+    MatchingBuilder builder(va, sa, a.size(), vb, sb, b.size());
+    builder.essentials();
+    std::vector<std::uint8_t> b_matched(vb.points.size(), 0);
+    for (std::uint32_t i = 0; i < best.size(); ++i) {
+      if (best[i] < 0) {
+        builder.a_to_diagonal(i);
+      } else {
+        builder.pair(i, static_cast<std::uint32_t>(best[i]));
+        b_matched[static_cast<std::size_t>(best[i])] = 1;
+      }
+    }
+    for (std::uint32_t j = 0; j < vb.points.size(); ++j)
+      if (!b_matched[j]) builder.b_to_diagonal(j);
+    *matching = builder.finish();
+  }
   return result;
 }
 

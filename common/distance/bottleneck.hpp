@@ -2,6 +2,7 @@
 // the diagonal at (birth - death) / 2. Exact by default; optionally a certified relative error.
 #pragma once
 
+#include "common/distance/diagram_matching.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/diagram.hpp"
@@ -21,6 +22,11 @@ struct BottleneckParams {
 // doubles and snapped down to the value of each matching found, so the result is an exact input
 // distance after at most 64 tests, with no tolerance anywhere (hence exactly scale-invariant
 // under multiplication by powers of two, and to rounding otherwise).
-DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const BottleneckParams& params = {});
+//
+// matching (optional): receives a matching whose longest term is the value exactly (with a
+// relative error, the matching whose bottleneck is the value returned); its `longest` is an
+// attaining term. Empty when the distance is infinite.
+DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const BottleneckParams& params = {},
+                                   DiagramMatching* matching = nullptr);
 
 }  // namespace fnet

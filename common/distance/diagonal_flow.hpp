@@ -74,6 +74,7 @@ class DiagonalFlow {
   // The current flow's cost: matched pairs plus points sent to the diagonal.
   double primal_cost() const;
   std::int64_t mate_of_a(std::uint32_t i) const { return mate_a_[i]; }
+  std::int64_t mate_of_b(std::uint32_t j) const { return mate_b_[j]; }  // an index of A, kDiagonal or kNone
 
   // Potentials (dual variables): reduced cost of u -> v is cost + potential(u) - potential(v).
   std::span<const double> potentials() const { return pi_; }  // a_0..a_{n-1}, b_0..b_{m-1}, HA, HB

@@ -26,24 +26,50 @@ EssentialConvention parse_essential_convention(std::string_view text) {
                               "' (expected floor, sentinel or separate)");
 }
 
-ConventionView apply_convention(const Diagram& diagram, EssentialConvention convention) {
+namespace {
+
+// sources == nullptr: the view alone, as every distance needs it.
+ConventionView make_view(const Diagram& diagram, EssentialConvention convention, ViewSources* sources) {
   ConventionView view;
   view.points.reserve(diagram.size());
-  for (const PersistencePoint& p : diagram) {
+  for (std::size_t k = 0; k < diagram.size(); ++k) {
+    const PersistencePoint& p = diagram[k];
     if (!std::isfinite(p.birth) || !std::isfinite(p.death))
       throw std::invalid_argument("diagram point with a non-finite coordinate");
     PlanePoint q{p.birth, p.death};
     if (p.death == kNeverDies) {
       if (convention == EssentialConvention::separate) {
         view.essential_births.push_back(p.birth);
+        if (sources) sources->essential.push_back(static_cast<std::uint32_t>(k));
         continue;
       }
       if (convention == EssentialConvention::floor) q.y = 0;
     }
-    if (q.x != q.y) view.points.push_back(q);
+    if (q.x != q.y) {
+      view.points.push_back(q);
+      if (sources) sources->points.push_back(static_cast<std::uint32_t>(k));
+    }
   }
-  std::sort(view.essential_births.begin(), view.essential_births.end());
+  if (sources) {
+    std::stable_sort(sources->essential.begin(), sources->essential.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return diagram[a].birth < diagram[b].birth; });
+    for (std::size_t k = 0; k < sources->essential.size(); ++k)
+      view.essential_births[k] = diagram[sources->essential[k]].birth;
+  } else {
+    std::sort(view.essential_births.begin(), view.essential_births.end());
+  }
   return view;
+}
+
+}  // namespace
+
+ConventionView apply_convention(const Diagram& diagram, EssentialConvention convention) {
+  return make_view(diagram, convention, nullptr);
+}
+
+ConventionView apply_convention(const Diagram& diagram, EssentialConvention convention, ViewSources& sources) {
+  sources = {};
+  return make_view(diagram, convention, &sources);
 }
 
 std::string essential_count_mismatch(const ConventionView& a, const ConventionView& b) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,16 @@ struct ConventionView {
 // Throws std::invalid_argument on a non-finite coordinate. Points on the diagonal are dropped: they
 // are free to match to the diagonal and never help a matching, so every distance ignores them.
 ConventionView apply_convention(const Diagram& diagram, EssentialConvention convention);
+
+// Where each entry of a view came from: its index in the diagram.
+struct ViewSources {
+  std::vector<std::uint32_t> points;     // parallel to ConventionView::points
+  std::vector<std::uint32_t> essential;  // parallel to ConventionView::essential_births
+};
+
+// The same view, and into `sources` the index in `diagram` of each of its entries (essential
+// births of equal value keep the diagram's order).
+ConventionView apply_convention(const Diagram& diagram, EssentialConvention convention, ViewSources& sources);
 
 // Under separate: the essential births matched in sorted order, which is optimal for every
 // q >= 1 and for the bottleneck. Empty message when the counts agree.

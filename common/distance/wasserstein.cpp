@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,8 +51,10 @@ struct Sums {
   double cost = 0, dual = 0;
 };
 
+// builder (optional) receives the matching found.
 Sums solve(const ConventionView& va, const ConventionView& vb, double factor, const ArcPower& power,
-           WassersteinStats& st) {
+           WassersteinStats& st, MatchingBuilder* builder) {
+  if (builder) builder->essentials();
   double essential_cost = 0;
   for (std::size_t k = 0; k < va.essential_births.size(); ++k)
     essential_cost += power(std::fabs(va.essential_births[k] - vb.essential_births[k]) * factor);
@@ -63,6 +66,7 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
     double cost = essential_cost;
     for (const auto* side : {&pa, &pb})
       for (const PlanePoint p : *side) cost += power(std::fabs(p.x - p.y) / 2);
+    if (builder) builder->all_to_diagonal();
     return {cost, cost};  // the only matching there is
   }
 
@@ -75,13 +79,24 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
   st.augmentations = flow.augmentations();
   st.settled = flow.settled();
   st.boxes_opened = flow.boxes_opened();
+  if (builder) {
+    for (std::uint32_t i = 0; i < pa.size(); ++i) {
+      const std::int64_t j = flow.mate_of_a(i);
+      if (j >= 0)
+        builder->pair(i, static_cast<std::uint32_t>(j));
+      else
+        builder->a_to_diagonal(i);
+    }
+    for (std::uint32_t j = 0; j < pb.size(); ++j)
+      if (flow.mate_of_b(j) < 0) builder->b_to_diagonal(j);
+  }
   return {flow.primal_cost() + essential_cost, std::max(0.0, flow.dual_bound() + essential_cost)};
 }
 
 }  // namespace
 
 DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const WassersteinParams& params,
-                                    WassersteinStats* stats) {
+                                    WassersteinStats* stats, DiagramMatching* matching) {
   if (!std::isfinite(params.q) || params.q < 1)
     throw std::invalid_argument("wasserstein: q must be finite and >= 1 (use the bottleneck for q = inf)");
   if (!std::isfinite(params.delta) || params.delta < 0)
@@ -89,18 +104,38 @@ DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const Wa
   WassersteinStats local_stats;
   WassersteinStats& st = stats ? *stats : local_stats;
   st = {};
-  const ConventionView va = apply_convention(a, params.essential), vb = apply_convention(b, params.essential);
+  if (matching) *matching = {};
+  ViewSources sa, sb;
+  const ConventionView va = view_for(a, params.essential, matching ? &sa : nullptr),
+                       vb = view_for(b, params.essential, matching ? &sb : nullptr);
   if (params.essential == EssentialConvention::separate) {
     if (std::string why = essential_count_mismatch(va, vb); !why.empty()) return infinite_result(std::move(why));
   }
+  // A fresh builder per solve: the last solve's matching is the answer's.
+  std::optional<MatchingBuilder> builder;
+  const auto new_builder = [&]() -> MatchingBuilder* {
+    if (!matching) return nullptr;
+    builder.emplace(va, sa, a.size(), vb, sb, b.size());
+    return &*builder;
+  };
+  const auto answer = [&](DistanceResult r) {
+    if (matching) *matching = builder->finish();
+    return r;
+  };
 
   double top = 0;
   for (const auto* v : {&va, &vb})
     for (const PlanePoint p : v->points) top = std::max(top, std::fabs(p.x - p.y) / 2);
   for (std::size_t k = 0; k < va.essential_births.size(); ++k)
     top = std::max(top, std::fabs(va.essential_births[k] - vb.essential_births[k]));
-  if (top == 0) return exact_result(0);
-  if (va.essential_births == vb.essential_births && same_points(va.points, vb.points)) return exact_result(0);
+  if (top == 0) {  // every point on the diagonal, equal essential births
+    if (MatchingBuilder* m = new_builder()) m->essentials();
+    return answer(exact_result(0));
+  }
+  if (va.essential_births == vb.essential_births && same_points(va.points, vb.points)) {
+    if (matching) *matching = identity_matching(a, b, params.essential);
+    return exact_result(0);
+  }
   const double q = params.q;
   // A sum of costs back to a distance, in the unit of length the costs were taken in.
   const auto root = [q](double sum, double unit) { return std::pow(sum, 1 / q) * unit; };
@@ -109,10 +144,10 @@ DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const Wa
     int exponent = 0;
     std::frexp(top, &exponent);
     const double scale = std::ldexp(1.0, exponent), inverse = std::ldexp(1.0, -exponent);
-    const Sums sums = solve(va, vb, inverse, ArcPower(q), st);
+    const Sums sums = solve(va, vb, inverse, ArcPower(q), st, new_builder());
     if (sums.cost >= kSmallestSafeSum) {
       st.dual_lower = root(sums.dual, scale);
-      return exact_result(root(sums.cost, scale));
+      return answer(exact_result(root(sums.cost, scale)));
     }
   }
   // Lengths in units of the bottleneck distance d_B: every matching has a term >= 1 (d_B is the
@@ -122,10 +157,13 @@ DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const Wa
   // overflows, while terms that underflow are below 1e-300 of S. Arcs longer than N^(1/q) d_B
   // are in no optimal matching, and ArcPower caps their costs.
   const double bottleneck = bottleneck_distance(a, b, {.essential = params.essential}).value;
-  if (bottleneck == 0) return exact_result(0);  // equal diagrams, caught above; no unit of length
-  const Sums sums = solve(va, vb, 1, ArcPower(q, bottleneck), st);
+  if (bottleneck == 0) {  // equal diagrams, caught above; no unit of length
+    if (matching) *matching = identity_matching(a, b, params.essential);
+    return exact_result(0);
+  }
+  const Sums sums = solve(va, vb, 1, ArcPower(q, bottleneck), st, new_builder());
   st.dual_lower = root(sums.dual, bottleneck);
-  return exact_result(root(sums.cost, bottleneck));
+  return answer(exact_result(root(sums.cost, bottleneck)));
 }
 
 }  // namespace fnet

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "common/distance/diagram_matching.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/diagram.hpp"
@@ -36,7 +37,10 @@ struct WassersteinStats {
 // near the largest persistence, exact; other q, or when that sum would underflow: the bottleneck
 // distance d_B), so for every q the result is scale-invariant to rounding, d_B <= d_Wq <=
 // N^(1/q) d_B (N points in all) holds to the last bit, and d_Wq -> d_B as q grows.
+//
+// matching (optional): receives an optimal matching, every point of a and b in one term, whose
+// (sum of length^q)^(1/q) is the value to rounding; empty when the distance is infinite.
 DistanceResult wasserstein_distance(const Diagram& a, const Diagram& b, const WassersteinParams& params = {},
-                                    WassersteinStats* stats = nullptr);
+                                    WassersteinStats* stats = nullptr, DiagramMatching* matching = nullptr);
 
 }  // namespace fnet

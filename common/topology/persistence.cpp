@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -142,6 +143,8 @@ struct Workspace {
   Buffer<double> death;                // per edge: death of the class born there, or kNotABirth; + a spare
   Buffer<std::uint8_t> loop;           // per edge: it closes a cycle
   Buffer<PersistencePoint> points[2];  // PD0 and PD1 before they are copied out
+  Buffer<Index> killer;                // pairs only, per edge: where its class dies; + a spare
+  Buffer<Index> third;                 // pairs only, per edge: the far vertex of the killing triangle
   Buffer<Index> pool;                  // reduced columns: size, then sorted edge positions
   std::vector<std::vector<Neighbour>> spill;
   std::vector<std::pair<Index, Index>> closing;
@@ -149,8 +152,13 @@ struct Workspace {
   std::vector<Index> column[2];
 };
 
+// kPairs: also record which simplex kills each class (compute_persistence_pairs); without it the
+// code is the diagrams-only sweep, unchanged.
+template <bool kPairs>
 class Sweep {
  public:
+  using Result = std::conditional_t<kPairs, PairedDiagrams, FrameDiagrams>;
+
   Sweep(const ForceNetwork& net, Workspace& ws)
       : net_(net),
         edges_(net.edges.data()),
@@ -163,12 +171,20 @@ class Sweep {
         ws_(ws) {
     if (net.edges.size() >= kNone / 8) throw std::length_error("compute_persistence: too many edges");
     ws.spill.clear();
+    if constexpr (kPairs) {
+      killer_ = ws.killer.get(net.edges.size() + 1);
+      third_ = ws.third.get(net.edges.size());
+    }
   }
 
-  FrameDiagrams run() {
+  Result run() {
     for (Index v = 0; v < net_.vertex_count; ++v) vertex_[v] = Vertex{{}, {}, v, kNone, 0, 0, 0};
     sweep();
-    return diagrams();
+    if constexpr (kPairs) {
+      return paired_diagrams();
+    } else {
+      return diagrams();
+    }
   }
 
  private:
@@ -214,6 +230,7 @@ class Sweep {
         Vertex& b = vertex[rv];
         const auto [elder, younger] = ordered(std::min(a.birth, k), std::min(b.birth, k));
         death[pick(younger == k, m_, younger)] = edges[k].value;
+        if constexpr (kPairs) killer_[pick(younger == k, m_, younger)] = k;
         death[k] = kFirstDeath[born];
         link[k] = kNone;
         const bool under_b = a.rank < b.rank;
@@ -360,13 +377,14 @@ class Sweep {
 
   // The column of a triangle that owns `pivot`, killing the loop born there at k. The pool
   // keeps room for the apparent pairs of all edges after k, 4 entries each.
-  Index* store_column(Index pivot, Index k, std::size_t size) {
+  Index* store_column(Index pivot, Index k, std::size_t size, Index far_vertex) {
     const std::size_t needed = pool_size_ + size + 1 + 4 * static_cast<std::size_t>(m_ - k) + 64;
     if (needed > ws_.pool.capacity()) pool_ = ws_.pool.grow(std::max(needed, 2 * ws_.pool.capacity()), pool_size_);
     if (pool_size_ + size + 1 >= kNone) throw std::length_error("compute_persistence: column pool full");
     Index* at = pool_ + pool_size_;
     link_[pivot] = static_cast<Index>(pool_size_);
     death_[pivot] = edges_[k].value;
+    if constexpr (kPairs) killer_[pivot] = k, third_[pivot] = far_vertex;
     at[0] = static_cast<Index>(size);
     pool_size_ += size + 1;
     return at + 1;
@@ -390,7 +408,13 @@ class Sweep {
       }
       if (size == 0) continue;
       assert(closes_cycle(column[size - 1]));
-      std::copy(column, column + size, store_column(column[size - 1], k, size));
+      // The triangle (e, f, k) kills the loop born at the pivot; its far vertex is e's end off k.
+      Index far_vertex = 0;
+      if constexpr (kPairs) {
+        const Edge& side = edges_[e];
+        far_vertex = side.u == edges_[k].u || side.u == edges_[k].v ? side.v : side.u;
+      }
+      std::copy(column, column + size, store_column(column[size - 1], k, size, far_vertex));
     }
   }
 
@@ -441,6 +465,62 @@ class Sweep {
     return out;
   }
 
+  // As diagrams(), with each kept point's simplices beside it. Not on the analysis path: plain code.
+  PairedDiagrams paired_diagrams() {
+    PairedDiagrams out;
+    FrameDiagrams& d = out.diagrams;
+    d.vertices = net_.vertex_count;
+    d.edges = m_;
+    d.triangles = triangles_;
+    std::vector<std::pair<PersistencePoint, PointSimplices>> points[2];
+    points[0].reserve(births_ + net_.vertex_count - touched_);
+    points[1].reserve(cycles_);
+    for (Index k = 0; k < m_; ++k) {
+      const double birth = edges_[k].value, death = death_[k];
+      if (!(death == kNeverDies || birth > death)) continue;
+      const Edge& e = edges_[k];
+      PointSimplices s;
+      if (loop_[k]) {
+        s.birth = {{e.u, e.v, 0}, 2};
+        if (death != kNeverDies) s.death = triangle(killer_[k], third_[k]);
+      } else {
+        s.birth = {{e.u, 0, 0}, 1};  // both ends enter with e; the lower index is the elder
+        if (death != kNeverDies) {
+          const Edge& merge = edges_[killer_[k]];
+          s.death = {{merge.u, merge.v, 0}, 2};
+        }
+      }
+      points[loop_[k]].push_back({{birth, death}, s});
+    }
+    for (auto& p : points) order_paired_ties(p);
+    for (Index v = 0; v < net_.vertex_count; ++v)  // rattlers, after every point of birth > 0
+      if (vertex_[v].count == 0) points[0].push_back({{0.0, kNeverDies}, {{{v, 0, 0}, 1}, {}}});
+    for (int dim = 0; dim < 2; ++dim) {
+      Diagram& diagram = dim == 0 ? d.pd0 : d.pd1;
+      std::vector<PointSimplices>& simplices = dim == 0 ? out.pd0 : out.pd1;
+      diagram.reserve(points[dim].size());
+      simplices.reserve(points[dim].size());
+      for (const auto& [point, s] : points[dim]) diagram.push_back(point), simplices.push_back(s);
+    }
+    return out;
+  }
+
+  // The triangle of edge k and vertex w, vertices ascending.
+  Simplex triangle(Index k, Index w) const {
+    std::array<std::uint32_t, 3> v{edges_[k].u, edges_[k].v, w};
+    std::sort(v.begin(), v.end());
+    return {v, 3};
+  }
+
+  static void order_paired_ties(std::vector<std::pair<PersistencePoint, PointSimplices>>& d) {
+    for (std::size_t i = 0, j = 0; i < d.size(); i = j) {
+      for (j = i + 1; j < d.size() && d[j].first.birth == d[i].first.birth;) ++j;
+      if (j - i > 1)
+        std::sort(d.begin() + static_cast<std::ptrdiff_t>(i), d.begin() + static_cast<std::ptrdiff_t>(j),
+                  [](const auto& a, const auto& b) { return a.first.death > b.first.death; });
+    }
+  }
+
   // Copies points into a diagram allocated once at its final size.
   static void export_points(const PersistencePoint* first, const PersistencePoint* last, std::size_t extra,
                             Diagram& out) {
@@ -468,6 +548,8 @@ class Sweep {
   Index* link_;
   double* death_;
   std::uint8_t* loop_;
+  Index* killer_ = nullptr;  // pairs only
+  Index* third_ = nullptr;   // pairs only
   Index* pool_;
   Workspace& ws_;
   std::optional<SortedAdjacency> sorted_;
@@ -478,9 +560,19 @@ class Sweep {
 
 }  // namespace
 
-FrameDiagrams compute_persistence(const ForceNetwork& network) {
+namespace {
+Workspace& thread_workspace() {
   thread_local Workspace workspace;
-  return Sweep(network, workspace).run();
+  return workspace;
+}
+}  // namespace
+
+FrameDiagrams compute_persistence(const ForceNetwork& network) {
+  return Sweep<false>(network, thread_workspace()).run();
+}
+
+PairedDiagrams compute_persistence_pairs(const ForceNetwork& network) {
+  return Sweep<true>(network, thread_workspace()).run();
 }
 
 }  // namespace fnet

@@ -41,5 +41,6 @@ int diagram_command(const std::vector<std::string>& args);
 int store_command(const std::vector<std::string>& args);
 int publish_command(const std::vector<std::string>& args);
 int distance_command(const std::vector<std::string>& args);
+int explain_command(const std::vector<std::string>& args);
 
 }  // namespace fnet::analyze

@@ -19,6 +19,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  diagram   persistence diagrams (PD0, PD1) of one frame's force network\n"
     "  distance  bottleneck or Wasserstein distance between two frames' diagrams\n"
+    "  explain   where two frames differ most: the largest terms of a distance, located in grains\n"
     "  store     analyze a recorded run (run file or CSV folder) into a run store, as fnet-server does\n"
     "  publish   replay a recorded run onto DDS, as fnet-simd streams it\n"
     "\n"
@@ -71,9 +72,8 @@ void require_directory(const std::string& what, const std::filesystem::path& pat
 int main(int argc, char** argv) {
   using Command = std::function<int(const std::vector<std::string>&)>;
   const std::map<std::string, Command> commands = {
-      {"diagram", fnet::analyze::diagram_command},
-      {"distance", fnet::analyze::distance_command},
-      {"store", fnet::analyze::store_command},
+      {"diagram", fnet::analyze::diagram_command}, {"distance", fnet::analyze::distance_command},
+      {"explain", fnet::analyze::explain_command}, {"store", fnet::analyze::store_command},
       {"publish", fnet::analyze::publish_command},
   };
   std::vector<std::string> args(argv + 1, argv + argc);

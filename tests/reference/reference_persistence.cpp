@@ -69,6 +69,26 @@ Diagrams diagrams_of(const Filtration& filtration) {
 
 }  // namespace
 
+std::vector<PairedPoint> persistence_pairs(const Frame& frame, ForceKind kind, double mean) {
+  const Filtration filtration = flag_filtration(frame, kind, mean);
+  const auto& simplices = filtration.simplices;
+  const auto lowest = reduce_lowest_rows(boundary_matrix(filtration));
+  std::vector<PairedPoint> out;
+  std::vector<bool> paired(simplices.size(), false);
+  for (std::size_t j = 0; j < simplices.size(); ++j) {
+    if (!lowest[j]) continue;
+    const std::size_t i = *lowest[j];
+    paired[i] = paired[j] = true;
+    if (simplices[i].dimension() < 2 && simplices[i].value != simplices[j].value)
+      out.push_back({simplices[i].dimension(), simplices[i].value, simplices[j].value, simplices[i].vertices,
+                     simplices[j].vertices});
+  }
+  for (std::size_t i = 0; i < simplices.size(); ++i)
+    if (!paired[i] && simplices[i].dimension() < 2)
+      out.push_back({simplices[i].dimension(), simplices[i].value, kNeverDies, simplices[i].vertices, {}});
+  return out;
+}
+
 Diagrams persistence(const Frame& frame, ForceKind kind) { return diagrams_of(flag_filtration(frame, kind)); }
 
 Diagrams persistence(const Frame& frame, ForceKind kind, double mean) {

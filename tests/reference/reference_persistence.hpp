@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "common/topology/diagram.hpp"
 #include "common/topology/force_network.hpp"
@@ -21,5 +23,17 @@ Diagrams persistence(const Frame& frame, ForceKind kind);
 
 // The same, normalized by a given mean instead of the reference's own (see flag_filtration).
 Diagrams persistence(const Frame& frame, ForceKind kind, double mean);
+
+// A point of positive persistence with the simplices the reduction pairs it by: the positive
+// simplex (row) and the negative one (column), as vertex lists; death empty for a class that
+// never dies. Ties are broken by the reference's own total order (flag_filtration.cpp).
+struct PairedPoint {
+  std::size_t dimension = 0;
+  double birth = 0, death = 0;
+  std::vector<std::uint32_t> birth_simplex, death_simplex;
+};
+
+// Every point of PD0 and PD1, in no particular order, normalized by `mean`.
+std::vector<PairedPoint> persistence_pairs(const Frame& frame, ForceKind kind, double mean);
 
 }  // namespace fnet::reference

@@ -27,6 +27,7 @@ struct Options {
   double budget_s = 1;
   std::uint64_t seed = 1;
   bool steady_malloc = true;
+  bool pairs = false;  // fnet side: compute_persistence_pairs (diagrams + their simplices)
 };
 
 // glibc returns freed memory at the top of the heap to the system (above 128 KiB) and maps
@@ -68,13 +69,15 @@ Diagram read_diagram(std::FILE* in) {
 // normalized edge list fnet built (not timed) through its flag-complex pipeline. Each run takes
 // the next of the distinct frames, so that neither side can have its branches learnt by heart.
 // A first pass over the frames warms up and writes the diagrams for the comparison.
-Measurement measure(Side side, const std::vector<Frame>& frames, const std::vector<ForceKind>& kinds, double budget_s) {
+Measurement measure(Side side, const std::vector<Frame>& frames, const std::vector<ForceKind>& kinds, double budget_s,
+                    bool pairs) {
   const ChildRun run = run_in_child([&](std::FILE* out) {
     std::vector<std::vector<ForceNetwork>> nets(frames.size());  // GUDHI's input, prepared untimed
     if (side == Side::gudhi)
       for (std::size_t f = 0; f < frames.size(); ++f)
         for (ForceKind kind : kinds) nets[f].push_back(build_network(frames[f], kind));
     const auto diagrams = [&](std::size_t f, std::size_t k) {
+      if (side == Side::fnet && pairs) return compute_persistence_pairs(build_network(frames[f], kinds[k])).diagrams;
       return side == Side::fnet ? compute_persistence(build_network(frames[f], kinds[k]))
                                 : testing::gudhi_persistence(frames[f].particle_count, nets[f][k].edges);
     };
@@ -88,10 +91,16 @@ Measurement measure(Side side, const std::vector<Frame>& frames, const std::vect
       }
     std::size_t next = 0;
     std::vector<FrameDiagrams> result(kinds.size());  // a service keeps what it computed
+    std::vector<PairedDiagrams> paired(kinds.size());
     const Timing timing = median_time(
         [&] {
           const std::size_t f = next++ % frames.size();
-          for (std::size_t k = 0; k < kinds.size(); ++k) result[k] = diagrams(f, k);
+          for (std::size_t k = 0; k < kinds.size(); ++k) {
+            if (pairs && side == Side::fnet)
+              paired[k] = compute_persistence_pairs(build_network(frames[f], kinds[k]));
+            else
+              result[k] = diagrams(f, k);
+          }
         },
         budget_s);
     std::fwrite(&timing, sizeof timing, 1, out);
@@ -156,7 +165,7 @@ std::size_t distinct_frames(std::size_t n) { return n <= 20000 ? 16 : 1; }
 void run(const Options& opt) {
   std::printf(
       "PD0 + PD1 of synthetic packings (jittered triangular lattice, diameters U[0.8,1.2], exponential forces).\n"
-      "fnet ms : build_network(frame, kind) + compute_persistence, from the raw frame.\n"
+      "fnet ms : build_network(frame, kind) + %s, from the raw frame.\n"
       "GUDHI ms: GUDHI's own flag-complex route on fnet's normalized edges (normalization not timed): vertex\n"
       "          values, Boost graph, Simplex_tree::insert_graph, expansion(2), Persistent_cohomology over Z/2\n"
       "          (min_persistence 0), intervals of dimensions 0 and 1 mapped back to superlevel values.\n"
@@ -169,6 +178,7 @@ void run(const Options& opt) {
       "          GUDHI's includes its input edge lists.\n"
       "PD      : 'same' = PD0 and PD1 equal as multisets (1e-12 relative) on every frame, for the row's kinds.\n"
       "malloc  : %s.\n\n",
+      opt.pairs ? "compute_persistence_pairs (with each point's simplices, --pairs)" : "compute_persistence",
       opt.budget_s, static_cast<unsigned long long>(opt.seed), static_cast<unsigned long long>(opt.seed),
       opt.steady_malloc ? "steady state for both sides (mmap threshold 32 MiB, no heap trimming; --steady-malloc=0: "
                           "glibc's defaults)"
@@ -192,11 +202,11 @@ void run(const Options& opt) {
         {ForceKind::normal}, {ForceKind::tangential}, {ForceKind::normal, ForceKind::tangential}};
     for (const auto& kinds : rows) {
       std::fprintf(stderr, "N=%zu %zu kind(s): fnet...\n", n, kinds.size());
-      const Measurement ours = measure(Side::fnet, frames, kinds, opt.budget_s);
+      const Measurement ours = measure(Side::fnet, frames, kinds, opt.budget_s, opt.pairs);
       Measurement theirs;
       if (with_gudhi) {
         std::fprintf(stderr, "N=%zu %zu kind(s): GUDHI...\n", n, kinds.size());
-        theirs = measure(Side::gudhi, frames, kinds, opt.budget_s);
+        theirs = measure(Side::gudhi, frames, kinds, opt.budget_s, false);
       }
       std::size_t edges = 0, triangles = 0;
       for (std::size_t k = 0; k < kinds.size() && k < ours.diagrams.size(); ++k)
@@ -245,7 +255,8 @@ int main(int argc, char** argv) {
       "gudhi-max", po::value(&opt.gudhi_max)->default_value(2000000), "skip GUDHI above this many particles")(
       "budget", po::value(&opt.budget_s)->default_value(1.0), "seconds of repeated runs per measurement")(
       "seed", po::value(&opt.seed)->default_value(1), "seed of the synthetic frames")(
-      "steady-malloc", po::value(&opt.steady_malloc)->default_value(true), "tune malloc like a long-running service");
+      "steady-malloc", po::value(&opt.steady_malloc)->default_value(true), "tune malloc like a long-running service")(
+      "pairs", po::bool_switch(&opt.pairs), "time compute_persistence_pairs (diagrams and their simplices) for fnet");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
