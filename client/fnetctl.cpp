@@ -18,6 +18,7 @@
 #include "client/rpc_client.hpp"
 #include "client/value_text.hpp"
 #include "common/codec/diagram_json.hpp"
+#include "common/codec/explain_table.hpp"
 #include "proto/json_rpc.hpp"
 
 namespace po = boost::program_options;
@@ -47,6 +48,9 @@ constexpr const char* kUsageText =
     "  blocks     where the network changed: distances cell by cell over a k x k grid between two frames:\n"
     "             --frame A --other-frame B --metric M [--k 2] [--q Q] [--run R] [--dim D] [--force F]\n"
     "             [--essential E] [--format table|csv|json]\n"
+    "  explain    the largest change located: the K largest terms of a distance's matching with the grains\n"
+    "             that create and destroy each feature: --frame A --other-frame B --metric M [--k 5]\n"
+    "             [--q Q] [--run R] [--other-run R2] [--dim D] [--force F] [--essential E] [--format table|json]\n"
     "\n"
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
     "  --port P (default $FNET_PORT, else 7707)\n"
@@ -292,6 +296,39 @@ int cmd_distance(Connection& rpc, const std::vector<std::string>& args) {
   return kOk;
 }
 
+int cmd_explain(Connection& rpc, const std::vector<std::string>& args) {
+  po::options_description o(
+      "usage: fnetctl explain --frame A --other-frame B --metric M [--k K] [options]\n\n"
+      "Where the network changed most: the K largest terms of the optimal matching behind the\n"
+      "distance (for the bottleneck the first is the term that attains it), each with its two\n"
+      "diagram points and the grains of the contacts that create and destroy each feature, read\n"
+      "back from the run's store (distance.get with explain: K).\n\noptions");
+  SeriesOptions c;
+  c.add(o, true);
+  long long frame = 0, other = 0, k = 5;
+  std::string other_run, format = "table";
+  o.add_options()("frame", po::value(&frame)->required(), "first frame")(
+      "other-frame", po::value(&other)->required(), "second frame")("other-run", po::value(&other_run),
+                                                                    "run of the second frame (default: the first's)")(
+      "k", po::value(&k)->default_value(5), "terms: 1 to 1000")("format", po::value(&format)->default_value("table"),
+                                                                "table or json (the API's answer)");
+  po::variables_map vm;
+  if (!parse_command(o, args, &vm)) return kOk;
+  format_option(format, {"table", "json"});
+  if (k < 1 || k > 1000) throw po::error("--k must be an integer from 1 to 1000, got " + std::to_string(k));
+  json p = c.checked(vm);
+  p["frame"] = frame_option("--frame", frame);
+  p["other_frame"] = frame_option("--other-frame", other);
+  p["explain"] = k;
+  if (!other_run.empty()) p["other_run"] = other_run;
+  const json r = rpc().call("distance.get", p);
+  if (format == "json")
+    std::cout << r.dump() << "\n";
+  else
+    write_explain_table(std::cout, r, r["metric"].get<std::string>());
+  return kOk;
+}
+
 int cmd_ensembles(Connection& rpc, const std::vector<std::string>& args) { return ensembles_command(rpc(), args); }
 
 int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
@@ -346,9 +383,9 @@ int run(std::vector<std::string> args) {
     if (command == "watch") return watch_command(at, args);
     if (command == "blocks") return blocks_command(at, args);
     using Fn = int (*)(Connection&, const std::vector<std::string>&);
-    const std::map<std::string, Fn> commands = {{"runs", cmd_runs},         {"ensembles", cmd_ensembles},
-                                                {"query", cmd_query},       {"diagram", cmd_diagram},
-                                                {"distance", cmd_distance}, {"status", cmd_status}};
+    const std::map<std::string, Fn> commands = {
+        {"runs", cmd_runs},         {"ensembles", cmd_ensembles}, {"query", cmd_query},  {"diagram", cmd_diagram},
+        {"distance", cmd_distance}, {"explain", cmd_explain},     {"status", cmd_status}};
     const auto it = commands.find(command);
     if (it == commands.end()) {
       std::cerr << "fnetctl: unknown command '" << command << "'\n\n" << kUsageText;

@@ -15,6 +15,7 @@
 #include "common/analysis/metric_vocabulary.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
+#include "common/codec/explain_json.hpp"
 #include "common/codec/run_info_json.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/block_methods.hpp"
@@ -25,6 +26,8 @@ namespace {
 
 using json = nlohmann::json;
 using rpc::Error;
+
+constexpr std::uint32_t kMaxExplainTerms = 1000;
 
 // ---- runs ------------------------------------------------------------------------------------
 
@@ -177,6 +180,10 @@ json distance_get(const Registry& registry, const json& params) {
   const EssentialConvention essential = get_essential(params);
   const double delta = get_number(params, "delta").value_or(0);
   if (!(delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
+  const auto explain_terms = get_index(params, "explain");
+  if (explain_terms && (*explain_terms < 1 || *explain_terms > kMaxExplainTerms))
+    invalid("explain", "parameter 'explain' must be an integer from 1 to " + std::to_string(kMaxExplainTerms) +
+                           " (the number of terms), got " + std::to_string(*explain_terms));
   const std::string run_a = resolve_run(registry, params, "run");
   const std::string run_b = find(params, "other_run") ? resolve_run(registry, params, "other_run") : run_a;
   const auto a = registry.frame(run_a, frame_a), b = registry.frame(run_b, frame_b);
@@ -191,6 +198,14 @@ json distance_get(const Registry& registry, const json& params) {
   out["frame"] = frame_a;
   out["other_run"] = run_b;
   out["other_frame"] = frame_b;
+  if (explain_terms) {
+    // The pairs are not stored with the diagrams: both networks are read back and their diagrams
+    // recomputed with the simplices that pair each point.
+    const Frame network_a = stored_network(registry, run_a, frame_a),
+                network_b = stored_network(registry, run_b, frame_b);
+    out["explain"] = explain_terms_json(
+        explain(network_a, network_b, {metric.distance(), dim, force, essential, *explain_terms}).terms);
+  }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -332,7 +347,7 @@ MethodTable method_table(ApiContext& ctx) {
       {"diagram.get",
        {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
       {"distance.get",
-       {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta"},
+       {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta", "explain"},
         plain([&registry](const json& p) { return distance_get(registry, p); })}},
       {"blocks.get",
        {{"run", "frame", "other_frame", "k", "metric", "q", "dim", "force", "essential"},

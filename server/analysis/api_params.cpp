@@ -132,4 +132,12 @@ std::string resolve_run(const Registry& registry, const json& params, std::strin
   return run;
 }
 
+Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index) {
+  try {
+    return registry.network(run, index);
+  } catch (const NetworkUnavailable& e) {
+    throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", index}, {"reason", e.what()}});
+  }
+}
+
 }  // namespace fnet::server

@@ -35,6 +35,10 @@ json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConventi
 
 [[noreturn]] void unknown_run(const std::string& run);
 [[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index);
+// A committed frame's force network read back from the run's store; error -32005 naming the run,
+// the frame and why when the store does not hold it.
+Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index);
+
 // The named run, or the newest one when the parameter is omitted.
 std::string resolve_run(const Registry& registry, const json& params, std::string_view name = "run");
 

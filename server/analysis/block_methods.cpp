@@ -24,14 +24,6 @@ int get_k(const json& params) {
   return v->get<int>();
 }
 
-Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index) {
-  try {
-    return registry.network(run, index);
-  } catch (const NetworkUnavailable& e) {
-    throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", index}, {"reason", e.what()}});
-  }
-}
-
 json bounds_json(const BlockCell& c) { return json::array({c.bounds[0], c.bounds[1], c.bounds[2], c.bounds[3]}); }
 
 }  // namespace

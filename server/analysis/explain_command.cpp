@@ -11,6 +11,7 @@
 #include <boost/program_options.hpp>
 
 #include "common/codec/explain_json.hpp"
+#include "common/codec/explain_table.hpp"
 #include "common/codec/frame_csv.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
@@ -19,55 +20,6 @@
 namespace po = boost::program_options;
 
 namespace fnet::analyze {
-
-namespace {
-
-std::string number(double x) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.6g", x);
-  return s;
-}
-
-std::string point_text(const nlohmann::json& p) {
-  if (p.is_null()) return "diagonal";
-  std::ostringstream out;
-  out << "(" << number(p.at("birth").get<double>()) << ", " << number(p.at("death").get<double>()) << ")";
-  return out.str();
-}
-
-// "12-40" for a contact, "12-40-41" for a triangle, "-" for none.
-std::string simplex_text(const nlohmann::json& s) {
-  if (s.is_null()) return "-";
-  std::ostringstream out;
-  const char* separator = "";
-  for (const auto& g : s.at("grains")) out << separator << g.get<std::uint32_t>(), separator = "-";
-  return out.str();
-}
-
-std::string grains_text(const nlohmann::json& p) {
-  if (p.is_null()) return "-";
-  return simplex_text(p.at("birth_simplex")) + " / " + simplex_text(p.at("death_simplex"));
-}
-
-void print_table(const nlohmann::json& out, const std::string& metric) {
-  std::cout << metric << " PD" << out.at("dim").get<int>() << " " << out.at("force").get<std::string>() << " ("
-            << out.at("essential").get<std::string>()
-            << "): " << (out.at("value").is_null() ? std::string("inf") : number(out.at("value").get<double>()))
-            << "\n";
-  if (out.contains("reason")) std::cout << out.at("reason").get<std::string>() << "\n";
-  if (out.at("explain").empty()) {
-    std::cout << "no term of positive cost\n";
-    return;
-  }
-  std::printf("%4s %12s %26s %26s  %-24s %-24s\n", "rank", "cost", "a (birth, death)", "b (birth, death)",
-              "a grains: birth / death", "b grains: birth / death");
-  for (const auto& t : out.at("explain"))
-    std::printf("%4d %12s %26s %26s  %-24s %-24s\n", t.at("rank").get<int>(),
-                number(t.at("cost").get<double>()).c_str(), point_text(t.at("a")).c_str(),
-                point_text(t.at("b")).c_str(), grains_text(t.at("a")).c_str(), grains_text(t.at("b")).c_str());
-}
-
-}  // namespace
 
 int explain_command(const std::vector<std::string>& args) {
   po::options_description options(
@@ -137,7 +89,7 @@ int explain_command(const std::vector<std::string>& args) {
   if (format == "json")
     std::cout << out.dump() << "\n";
   else
-    print_table(out, choice.label());
+    write_explain_table(std::cout, out, choice.label());
   return 0;
 }
 

@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "client/rpc_client.hpp"
+#include "common/analysis/explain.hpp"
+#include "common/codec/explain_json.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/support/lammps_frames.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -302,6 +304,109 @@ TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   EXPECT_EQ(with({"--format", "xml"}).code, 2);
   EXPECT_EQ(fnetctl(log, server.port,
                     {"blocks", "--run", "planted", "--frame", "0", "--other-frame", "7", "--metric", "bottleneck"})
+                .code,
+            4);
+}
+
+// distance.get with explain: k reads both networks back from the store and names the grains of
+// the largest terms; for d_B the first term is the one that attains it, and its feature in the
+// planted frame lies in the planted corner.
+TEST(ExplainService, TheTermsAreTheLibrarysAndTheBottleneckTermLiesInThePlantedCorner) {
+  testing::TempDir tmp;
+  const PlantedRun run = plant(testing::lammps_frame(10));
+  const fs::path csv = write_run(tmp.path() / "csv", run);
+  const fs::path data = tmp.path() / "data";
+  fs::create_directories(data);
+  fs::copy_file(fs::path(FNET_TEST_DATA) / "store-v1" / "legacy-v1.h5", data / "legacy-v1.h5");
+  Server server = start_server(data, tmp.path() / "server.log", 86);
+  Process pub(
+      FNET_ANALYZE,
+      {"publish", "--csv-dir", csv.string(), "--run-id", "planted", "--domain", "86", "--wait-for-reader", "30"},
+      tmp.path() / "publish.log", dds_environment());
+  ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+  wait_for_frames(server.port, "planted", 3);
+  RpcClient rpc("127.0.0.1", server.port);
+  const BlockDomain d = block_domain(run.planted);
+  const double mid_x = (d.x_lo + d.x_hi) / 2, mid_y = (d.y_lo + d.y_hi) / 2;
+  const auto ask = [&](std::uint32_t a, std::uint32_t b, const std::string& metric, int dim, std::uint32_t k) {
+    return rpc.call(
+        "distance.get",
+        {{"run", "planted"}, {"frame", a}, {"other_frame", b}, {"metric", metric}, {"dim", dim}, {"explain", k}});
+  };
+  for (const std::string metric : {"bottleneck", "wasserstein2"})
+    for (const int dim : {0, 1}) {
+      SCOPED_TRACE(metric + " dim " + std::to_string(dim));
+      const DistanceMetric m = metric == "bottleneck" ? DistanceMetric::bottleneck() : DistanceMetric::wasserstein(2);
+      const json answer = ask(0, 1, metric, dim, 3);
+      const Explanation expected =
+          explain(run.original, run.planted, {m, dim, ForceKind::normal, EssentialConvention::floor, 3});
+      EXPECT_EQ(answer["explain"], explain_terms_json(expected.terms));
+      EXPECT_EQ(answer["value"].get<double>(), expected.distance.value);
+      ASSERT_FALSE(answer["explain"].empty());
+      if (metric == "bottleneck") {
+        const json& first = answer["explain"][0];
+        EXPECT_EQ(first["cost"].get<double>(), answer["value"].get<double>());
+        ASSERT_FALSE(first["b"].is_null()) << first.dump();
+        for (const json& xy : first["b"]["birth_simplex"]["positions"]) {
+          EXPECT_LT(xy[0].get<double>(), mid_x) << first.dump();
+          EXPECT_GT(xy[1].get<double>(), mid_y) << first.dump();
+        }
+      }
+      // An unchanged frame: distance 0, no term of positive cost.
+      const json same = ask(0, 2, metric, dim, 3);
+      EXPECT_EQ(same["value"].get<double>(), 0.0);
+      EXPECT_TRUE(same["explain"].empty()) << same.dump();
+    }
+  // Without explain the answer has none; bad values are named before any work.
+  EXPECT_FALSE(
+      rpc.call("distance.get", {{"run", "planted"}, {"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}})
+          .contains("explain"));
+  for (const json& bad : {json(0), json(1001), json("3"), json(-1)}) {
+    json data_out;
+    EXPECT_EQ(
+        error_code(rpc, "distance.get",
+                   {{"run", "planted"}, {"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}, {"explain", bad}},
+                   &data_out),
+        -32602)
+        << bad;
+    EXPECT_EQ(data_out["parameter"], "explain") << bad;
+  }
+  // A store written before networks were kept cannot be explained, and says why.
+  json data_out;
+  EXPECT_EQ(
+      error_code(rpc, "distance.get",
+                 {{"run", "legacy-v1"}, {"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}, {"explain", 1}},
+                 &data_out),
+      -32005);
+  EXPECT_EQ(data_out["run"], "legacy-v1");
+
+  // fnetctl explain: the API's answer as JSON, and a table with one row per term.
+  const fs::path log = tmp.path() / "fnetctl.log";
+  const std::vector<std::string> args{"explain", "--run",    "planted",    "--frame", "0", "--other-frame",
+                                      "1",       "--metric", "bottleneck", "--dim",   "1", "--k",
+                                      "2"};
+  std::vector<std::string> as_json = args;
+  as_json.insert(as_json.end(), {"--format", "json"});
+  const CliResult j = fnetctl(log, server.port, as_json);
+  ASSERT_EQ(j.code, 0) << read_file(log);
+  EXPECT_EQ(without_time(json::parse(j.out)), without_time(ask(0, 1, "bottleneck", 1, 2)));
+  const CliResult table = fnetctl(log, server.port, args);
+  ASSERT_EQ(table.code, 0) << read_file(log);
+  std::size_t rows = 0;
+  bool header = false;
+  std::string line;
+  for (std::istringstream t(table.out); std::getline(t, line);) {
+    header |= line.find("rank") != std::string::npos && line.find("where (x, y)") != std::string::npos;
+    rows += line.rfind("   1 ", 0) == 0 || line.rfind("   2 ", 0) == 0;
+  }
+  EXPECT_TRUE(header) << table.out;
+  EXPECT_EQ(rows, std::min<std::size_t>(2, ask(0, 1, "bottleneck", 1, 2)["explain"].size())) << table.out;
+  EXPECT_EQ(
+      fnetctl(log, server.port, {"explain", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", "0"})
+          .code,
+      2);
+  EXPECT_EQ(fnetctl(log, server.port,
+                    {"explain", "--run", "planted", "--frame", "0", "--other-frame", "9", "--metric", "bottleneck"})
                 .code,
             4);
 }

@@ -1,0 +1,75 @@
+#include "common/codec/explain_table.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace fnet {
+namespace {
+
+std::string number(double x) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.6g", x);
+  return s;
+}
+
+std::string point_text(const nlohmann::json& p) {
+  if (p.is_null()) return "diagonal";
+  std::ostringstream out;
+  out << "(" << number(p.at("birth").get<double>()) << ", " << number(p.at("death").get<double>()) << ")";
+  return out.str();
+}
+
+// "12-40" for a contact, "12-40-41" for a triangle, "-" for none.
+std::string simplex_text(const nlohmann::json& s) {
+  if (s.is_null()) return "-";
+  std::ostringstream out;
+  const char* separator = "";
+  for (const auto& g : s.at("grains")) out << separator << g.get<std::uint32_t>(), separator = "-";
+  return out.str();
+}
+
+std::string grains_text(const nlohmann::json& p) {
+  if (p.is_null()) return "-";
+  return simplex_text(p.at("birth_simplex")) + " / " + simplex_text(p.at("death_simplex"));
+}
+
+// The centre of the grains that create the term's feature: of b's point (the later frame), or of
+// a's when b is the diagonal; "-" without positions.
+std::string where_text(const nlohmann::json& term) {
+  const nlohmann::json& p = term.at("b").is_null() ? term.at("a") : term.at("b");
+  if (p.is_null() || !p.at("birth_simplex").contains("positions")) return "-";
+  double x = 0, y = 0;
+  const auto& positions = p.at("birth_simplex").at("positions");
+  for (const auto& xy : positions) x += xy.at(0).get<double>(), y += xy.at(1).get<double>();
+  const double n = static_cast<double>(positions.size());
+  std::ostringstream out;
+  out << "(" << number(x / n) << ", " << number(y / n) << ")";
+  return out.str();
+}
+
+}  // namespace
+
+void write_explain_table(std::ostream& out, const nlohmann::json& answer, const std::string& metric_label) {
+  out << metric_label << " PD" << answer.at("dim").get<int>() << " " << answer.at("force").get<std::string>() << " ("
+      << answer.at("essential").get<std::string>()
+      << "): " << (answer.at("value").is_null() ? std::string("inf") : number(answer.at("value").get<double>()))
+      << "\n";
+  if (answer.contains("reason")) out << answer.at("reason").get<std::string>() << "\n";
+  if (answer.at("explain").empty()) {
+    out << "no term of positive cost\n";
+    return;
+  }
+  char line[320];
+  std::snprintf(line, sizeof line, "%4s %12s %26s %26s  %-24s %-24s %s\n", "rank", "cost", "a (birth, death)",
+                "b (birth, death)", "a grains: birth / death", "b grains: birth / death", "where (x, y)");
+  out << line;
+  for (const auto& t : answer.at("explain")) {
+    std::snprintf(line, sizeof line, "%4d %12s %26s %26s  %-24s %-24s %s\n", t.at("rank").get<int>(),
+                  number(t.at("cost").get<double>()).c_str(), point_text(t.at("a")).c_str(),
+                  point_text(t.at("b")).c_str(), grains_text(t.at("a")).c_str(), grains_text(t.at("b")).c_str(),
+                  where_text(t).c_str());
+    out << line;
+  }
+}
+
+}  // namespace fnet
