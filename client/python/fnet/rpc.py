@@ -163,6 +163,7 @@ class Subscription:
             self._conn.close()
             raise
         self.id = self.reply["subscription"]
+        self.unsubscribed = None  # the server's word that the subscription ended, once closed
 
     def __iter__(self):
         return self
@@ -195,7 +196,7 @@ class Subscription:
             return
         conn, self._conn = self._conn, None
         try:
-            conn.call(self._unsubscribe, {"subscription": self.id})
+            self.unsubscribed = conn.call(self._unsubscribe, {"subscription": self.id})["unsubscribed"]
         except (OSError, ConnectionError):
             pass  # the server is gone: the subscription ended with the connection
         finally:

@@ -140,6 +140,7 @@ def test_subscription_is_an_iterator_that_unsubscribes_on_exit(client):
         assert sub.reply == {"subscription": sub.id, "run": RUN}
         points = [next(sub) for _ in range(3)]
         assert client.status()["subscriptions"] == 1
+    assert sub.unsubscribed == sub.id
     assert [p.frame for p in points] == [8, 9, 10]
     for p in points:
         k = int(np.flatnonzero(stored.frame == p.frame)[0])
@@ -154,4 +155,5 @@ def test_subscription_of_every_run_sends_every_frame_in_order(client):
     with client.subscribe() as sub:
         assert sub.reply["run"] is None
         frames = [next(sub).frame for _ in range(LAMMPS_FRAMES)]
-    assert frames == list(range(LAMMPS_FRAMES))
+        assert sub.next(timeout=0.5) is None  # nothing more until a new frame
+    assert frames == list(range(LAMMPS_FRAMES)) and sub.unsubscribed == sub.id

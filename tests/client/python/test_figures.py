@@ -2,12 +2,15 @@
 real fnet-simd run wrote: each figure is rendered to PNG, and the data of its artists is the data
 it was given, point for point."""
 
+import json
+import subprocess
+
 import numpy as np
 import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import LAMMPS_FRAMES, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
+from conftest import LAMMPS_FRAMES, binary, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
 
 DOMAIN = 92
 RUN = "lammps"
@@ -71,6 +74,37 @@ def test_network_draws_every_contact_of_the_force_network(run_file, tmp_path):
         np.testing.assert_allclose(lines.get_array(), forces[keep] / forces[keep].mean(), rtol=1e-15)
         (grains,) = artists(fig, "grains")
         assert len(grains.get_paths()) == len(frame.particles)
+
+
+def test_network_is_the_force_network_fnet_analyzes(run_file, tmp_path):
+    # A real frame with contacts planted that carry no force (and tensile ones): the figure draws
+    # exactly the edges fnet-analyze counts in its force network, normalized as it normalizes them.
+    with fnet.store.open_run_file(run_file) as f:
+        frame = f.frame(3)
+    forces = frame.contact_forces.copy()
+    forces[::5, 0] = 0.0
+    forces[1::6, 0] *= -1.0
+    forces[::7, 1] = 0.0
+    frame.contact_forces = forces
+    contacts = tmp_path / "contacts.csv"
+    with open(contacts, "w") as out:
+        out.write("i,j,fn,ft\n")
+        for (i, j), (fn, ft) in zip(frame.contact_pairs.tolist(), forces.tolist()):
+            out.write(f"{i},{j},{fn!r},{ft!r}\n")
+    particles = tmp_path / "particles.csv"
+    with open(particles, "w") as out:
+        out.write("id,x,y,r\n")
+        for k, (x, y, r) in enumerate(frame.particles.tolist()):
+            out.write(f"{k},{x!r},{y!r},{r!r}\n")
+    for force in ("normal", "tangential"):
+        r = subprocess.run([binary("FNET_ANALYZE"), "diagram", "--contacts", contacts, "--particles", particles,
+                            "--force", force], capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stderr
+        analyzed = json.loads(r.stdout)
+        (lines,) = artists(figures.network(frame, force=force), "contacts")
+        assert len(lines.get_segments()) == analyzed["edges"] < len(frame.contact_pairs)
+        # The strongest contact gives birth to the first component, at its normalized force.
+        np.testing.assert_allclose(lines.get_array().max(), max(p[0] for p in analyzed["pd0"]), rtol=1e-12)
 
 
 def test_network_change_is_after_minus_before(run_file, tmp_path):
