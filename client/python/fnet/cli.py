@@ -83,7 +83,9 @@ def build_parser():
     kinds = plot.add_subparsers(dest="kind", required=True, metavar="KIND")
 
     p = kinds.add_parser("network", help="Fig. 1: a frame's force network (or the change between two frames)")
-    p.add_argument("--run-file", required=True, help="the run file fnet-simd wrote (--out)")
+    source = p.add_mutually_exclusive_group(required=True)
+    source.add_argument("--run-file", help="the run file fnet-simd wrote (--out)")
+    source.add_argument("--store", help="an analysis store that keeps the frames' networks (fnet-store-2)")
     p.add_argument("--frame", type=FRAME, required=True, help="the frame")
     p.add_argument("--other-frame", type=FRAME, help="draw the change from --frame to this frame")
     p.add_argument("--force", choices=("normal", "tangential"), default="normal", help="force network")
@@ -158,10 +160,10 @@ def _check(parser, args):
         sub.error("--bins/--bin-width/--axis: only with --ensemble")
     if args.kind == "diagram" and args.store and args.run:
         sub.error("--run: not with --store (a store holds one run)")
-    if args.kind == "network" and not os.path.exists(args.run_file):
-        sub.error(f"--run-file: no such file {args.run_file!r}")
-    if args.kind == "diagram" and args.store and not os.path.exists(args.store):
-        sub.error(f"--store: no such file {args.store!r}")
+    for option in ("run_file", "store"):
+        path = getattr(args, option, None)
+        if path and not os.path.exists(path):
+            sub.error(f"--{option.replace('_', '-')}: no such file {path!r}")
 
 
 def _binning(args):
@@ -174,11 +176,14 @@ def _distance(args):
 
 def _draw(args):
     if args.kind == "network":
-        with store.open_run_file(args.run_file) as f:
-            frame = f.frame(args.frame)
-            if args.other_frame is None:
-                return figures.network(frame, force=args.force)
-            return figures.network_change(frame, f.frame(args.other_frame), force=args.force)
+        with (store.open_run_file(args.run_file) if args.run_file else store.open_store(args.store)) as f:
+            read = f.frame if args.run_file else f.network
+            frames = [read(k) for k in (args.frame, args.other_frame) if k is not None]
+        if any(frame is None for frame in frames):
+            raise KeyError(f"the store {args.store} does not keep the networks of its frames (schema {f.schema})")
+        if len(frames) == 1:
+            return figures.network(frames[0], force=args.force)
+        return figures.network_change(*frames, force=args.force)
     if args.kind == "diagram" and args.store:
         with store.open_store(args.store) as s:
             return figures.diagrams(s.diagram(args.frame, 0, args.force), s.diagram(args.frame, 1, args.force),

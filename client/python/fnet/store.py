@@ -15,7 +15,7 @@ from fnet.arrays import Result
 
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
 FORCES = ("normal", "tangential")
-STORE_SCHEMA = "fnet-store-1"
+STORE_SCHEMAS = ("fnet-store-1", "fnet-store-2")  # the second adds each frame's network
 RUN_SCHEMAS = ("fnet-run-1", "fnet-run-2")
 
 
@@ -43,15 +43,16 @@ def _open(path):
 
 
 class Store:
-    """An analysis store (schema fnet-store-1), opened read-only in SWMR mode."""
+    """An analysis store (schema fnet-store-1 or fnet-store-2), opened read-only in SWMR mode."""
 
     def __init__(self, path):
         self.path = str(path)
         self.file = _open(self.path)
         schema = _text(self.file.attrs.get("schema", ""))
-        if schema != STORE_SCHEMA:
+        if schema not in STORE_SCHEMAS:
             self.file.close()
-            raise ValueError(f"{self.path}: schema {schema!r}, expected {STORE_SCHEMA!r}")
+            raise ValueError(f"{self.path}: schema {schema!r}, expected one of {', '.join(STORE_SCHEMAS)}")
+        self.schema = schema
         self.run_id = _text(self.file.attrs["run_id"])
         self.refresh()
 
@@ -128,6 +129,27 @@ class Store:
         c = self._cols["counts"][self._row(frame)]
         k = FORCES.index(force) * 3
         return tuple(int(v) for v in c[k:k + 3])
+
+    def network(self, frame):
+        """The force network a frame was analyzed from, as a Frame (particles, contact_pairs,
+        contact_forces; no wall contacts), if the store keeps it (schema fnet-store-2); else None."""
+        row = self._row(frame)
+        f = self.file
+        if "has_network" not in f:
+            return None
+        for name in ("has_network", "network_offsets", "particles", "contact_pairs", "contact_forces"):
+            f[name].refresh()
+        if not f["has_network"][row]:
+            return None
+        p0, p1, c0, c1 = (int(v) for v in f["network_offsets"][row])
+        c = self._cols
+        return Frame(index=int(frame), run=self.run_id, step=int(c["step"][row]), time=float(c["time"][row]),
+                     rho=float(c["rho"][row]), z=float(c["z"][row]),
+                     particles=np.asarray(f["particles"][p0:p1], dtype=np.float64).reshape(-1, 3),
+                     contact_pairs=np.asarray(f["contact_pairs"][c0:c1], dtype=np.int64).reshape(-1, 2),
+                     contact_forces=np.asarray(f["contact_forces"][c0:c1], dtype=np.float64).reshape(-1, 2),
+                     wall_contact_particles=np.zeros(0, dtype=np.int64),
+                     wall_contact_forces=np.zeros((0, 2), dtype=np.float64))
 
     def rejected(self):
         """[(frame, reason), ...] of the rejected frames."""

@@ -11,7 +11,7 @@ import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, start_server, wait_for_frames
+from conftest import LAMMPS, LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, start_server, wait_for_frames
 
 DOMAIN = 94
 RUN = "lammps"
@@ -85,5 +85,24 @@ def test_command_line_draws_the_block_table(server, tmp_path):
     r = subprocess.run([sys.executable, "-m", "fnet", "plot", "blocks", "--run", RUN, "--frame", "9", "--other-frame",
                         "10", "--k", "2", "--metric", "bottleneck", "--dim", "1", "--port", str(server.port), "--out",
                         str(out)], capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_store_keeps_each_frame_network_and_the_figure_draws_it(server, tmp_path):
+    with fnet.store.open_store(server.store_path(RUN)) as st:
+        assert st.schema == "fnet-store-2"
+        frame = st.network(7)
+    particles = np.loadtxt(LAMMPS / "frame_0007_particles.csv", delimiter=",", skiprows=1).reshape(-1, 4)
+    contacts = np.loadtxt(LAMMPS / "frame_0007_contacts.csv", delimiter=",", skiprows=1).reshape(-1, 4)
+    np.testing.assert_array_equal(frame.particles, particles[np.argsort(particles[:, 0]), 1:4])
+    stored = np.column_stack([frame.contact_pairs, frame.contact_forces])
+    np.testing.assert_array_equal(stored[np.lexsort((stored[:, 1], stored[:, 0]))],
+                                  contacts[np.lexsort((contacts[:, 1], contacts[:, 0]))])
+    out = tmp_path / "network.png"
+    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
+    r = subprocess.run([sys.executable, "-m", "fnet", "plot", "network", "--store", str(server.store_path(RUN)),
+                        "--frame", "6", "--other-frame", "7", "--out", str(out)], capture_output=True, text=True,
+                       env=env, timeout=300)
     assert r.returncode == 0, r.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
