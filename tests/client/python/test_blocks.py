@@ -96,9 +96,12 @@ def test_store_keeps_each_frame_network_and_the_figure_draws_it(server, tmp_path
     particles = np.loadtxt(LAMMPS / "frame_0007_particles.csv", delimiter=",", skiprows=1).reshape(-1, 4)
     contacts = np.loadtxt(LAMMPS / "frame_0007_contacts.csv", delimiter=",", skiprows=1).reshape(-1, 4)
     np.testing.assert_array_equal(frame.particles, particles[np.argsort(particles[:, 0]), 1:4])
-    stored = np.column_stack([frame.contact_pairs, frame.contact_forces])
-    np.testing.assert_array_equal(stored[np.lexsort((stored[:, 1], stored[:, 0]))],
-                                  contacts[np.lexsort((contacts[:, 1], contacts[:, 0]))])
+
+    def canonical(pairs, forces):  # rows as (min, max, fn, ft), sorted: order and orientation aside
+        rows = np.column_stack([np.sort(pairs, axis=1), forces])
+        return rows[np.lexsort((rows[:, 1], rows[:, 0]))]
+    np.testing.assert_array_equal(canonical(frame.contact_pairs, frame.contact_forces),
+                                  canonical(contacts[:, 0:2], contacts[:, 2:4]))
     out = tmp_path / "network.png"
     env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
     r = subprocess.run([sys.executable, "-m", "fnet", "plot", "network", "--store", str(server.store_path(RUN)),
