@@ -3,6 +3,7 @@
 configuration and a DDS domain of each test file's own (its module-level DOMAIN, 90-99), each
 stopped when its test file is done."""
 
+import ctypes
 import os
 import re
 import signal
@@ -35,6 +36,12 @@ def dds_environment():
     return env
 
 
+def _die_with_parent():
+    """In the child: SIGTERM when the test process dies, so that a killed pytest (a CTest timeout)
+    leaves no server behind."""
+    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+
+
 class Process:
     """A child process with stdout readable line by line and stderr in a log file; stop() sends
     SIGTERM, waits, then SIGKILL."""
@@ -43,7 +50,7 @@ class Process:
         self.log = Path(log)
         self._err = open(self.log, "ab")
         self.popen = subprocess.Popen([str(a) for a in args], stdout=subprocess.PIPE, stderr=self._err,
-                                      env=env or dds_environment())
+                                      env=env or dds_environment(), preexec_fn=_die_with_parent)
 
     def read_line(self):
         return self.popen.stdout.readline().decode()
