@@ -10,6 +10,12 @@ be checked against what was served: "contacts", "grains", "finite", "never_dies"
 import math
 
 import numpy as np
+
+try:
+    import matplotlib  # noqa: F401
+except ImportError as e:  # a python3 other than Debian's (a pyenv one, say) may lack it
+    raise ImportError(f"fnet.figures needs matplotlib: Debian's python3 (/usr/bin/python3) with "
+                      f"python3-matplotlib ({e})") from e
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.colors import Normalize, TwoSlopeNorm

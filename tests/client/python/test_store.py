@@ -119,6 +119,7 @@ def test_store_read_while_the_server_writes_it(processes):
             seen.append(st.refresh())
         assert seen[-1] == LAMMPS_FRAMES
         assert seen == sorted(seen)  # frames only ever appear, in order
+        assert len(set(seen)) > 2, seen  # and the reader saw them appear while the server wrote
         with server.client() as c:
             np.testing.assert_array_equal(st.series("bottleneck", 1, "normal").value,
                                           c.series("bottleneck", run="slow", dim=1).value)
