@@ -34,6 +34,9 @@ def _params(**given):
     return {k: v for k, v in given.items() if v is not None}
 
 
+_DEFAULT = object()  # a connection's own timeout
+
+
 class _Connection:
     """One TCP connection: requests out, lines in; notifications kept until asked for."""
 
@@ -47,9 +50,10 @@ class _Connection:
     def close(self):
         self._sock.close()
 
-    def read_message(self, timeout=None):
-        """The next line as JSON; socket.timeout after `timeout` seconds (default: the connection's)."""
-        self._sock.settimeout(self._timeout if timeout is None else timeout)
+    def read_message(self, timeout=_DEFAULT):
+        """The next line as JSON; socket.timeout after `timeout` seconds (default: the connection's;
+        None: no limit)."""
+        self._sock.settimeout(self._timeout if timeout is _DEFAULT else timeout)
         while True:
             end = self._buffer.find(b"\n")
             if end >= 0:
@@ -84,7 +88,7 @@ class _Connection:
                 raise RpcError(e.get("code"), e.get("message"), e.get("data"))
             return message["result"]
 
-    def next_notification(self, timeout=None):
+    def next_notification(self, timeout=_DEFAULT):
         if self.notifications:
             return self.notifications.popleft()
         message = self.read_message(timeout)
@@ -148,9 +152,9 @@ def _blocks(result):
 class Subscription:
     """An iterator over a subscription's notifications, on a connection of its own.
 
-    Iterating blocks until the next notification (at most the client's timeout: socket.timeout);
-    next(timeout) waits at most `timeout` seconds. Leaving a with-block, or close(), unsubscribes
-    and closes the connection."""
+    Iterating waits for the next notification as long as it takes (a live run may be quiet for
+    long); next(timeout) waits at most `timeout` seconds and returns None when none came. Leaving a
+    with-block, or close(), unsubscribes and closes the connection."""
 
     def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert):
         self._conn = _Connection(host, port, timeout)
@@ -173,9 +177,9 @@ class Subscription:
             raise StopIteration
         return self.next(None)
 
-    def next(self, timeout):
-        """The next notification, waiting at most `timeout` seconds (None: the client's timeout);
-        None when none came in time."""
+    def next(self, timeout=None):
+        """The next notification, waiting at most `timeout` seconds (None: no limit); None when
+        none came in time."""
         if self._conn is None:
             raise StopIteration
         deadline = None if timeout is None else time.monotonic() + timeout
@@ -184,8 +188,6 @@ class Subscription:
             try:
                 message = self._conn.next_notification(left)
             except socket.timeout:
-                if deadline is None:
-                    raise
                 return None
             params = message.get("params", {})
             if message.get("method") == self._notification and params.get("subscription") == self.id:
