@@ -64,12 +64,25 @@ def _distance_options(parser, metric_required=True, forces=False):
                         help="how classes that never die are matched")
 
 
+def _axis(text):
+    if text in ("rho", "rho-minus-rho-j", "rho_minus_rho_j"):
+        return text.replace("-", "_")
+    raise argparse.ArgumentTypeError(f"expected rho or rho-minus-rho-j, got {text!r}")
+
+
 def _bin_options(parser):
+    """As fnetctl's: --bins is a bin width, --bin-count a number of bins."""
     g = parser.add_mutually_exclusive_group()
-    g.add_argument("--bins", type=_bounded(int, 1, None, "an integer >= 1"), help="number of bins in rho")
-    g.add_argument("--bin-width", type=_positive_float, help="width of the bins in rho (server's default: 0.002)")
-    parser.add_argument("--axis", choices=("rho", "rho_minus_rho_j"), default="rho",
-                        help="rho, or rho - rho_J (each run's jamming point)")
+    g.add_argument("--bins", type=_positive_float, metavar="W",
+                   help="bin width in rho of a binned curve (default 0.002 with --ensemble)")
+    g.add_argument("--bin-count", type=_bounded(int, 1, None, "an integer >= 1"), metavar="N",
+                   help="instead of --bins: this many bins over the samples' range")
+    parser.add_argument("--axis", type=_axis, default="rho",
+                        help="x of a binned curve: rho, or rho-minus-rho-j (each run's rho - rho_J)")
+
+
+def _binned(args):
+    return bool(getattr(args, "ensemble", None) or args.bins or args.bin_count or args.axis != "rho")
 
 
 def _out(parser):
@@ -102,7 +115,7 @@ def build_parser():
     p = kinds.add_parser("distances", help="distances against rho with Z; with --ensemble, Figs. 6, 8, 9")
     _endpoint(p)
     who = p.add_mutually_exclusive_group()
-    who.add_argument("--run", help="one run's series (default: the newest run)")
+    who.add_argument("--run", help="one run's series (default: the newest run); binned with --bins/--bin-count")
     who.add_argument("--ensemble", help="the ensemble's mean ± standard error per bin of rho")
     _distance_options(p)
     _bin_options(p)
@@ -121,7 +134,7 @@ def build_parser():
     p = kinds.add_parser("ratio", help="Figs. 7, 10: d_B / d_W1 and d_B / d_W2 against rho")
     _endpoint(p)
     who = p.add_mutually_exclusive_group()
-    who.add_argument("--run", help="one run's ratio (default: the newest run)")
+    who.add_argument("--run", help="one run's ratio per frame (default: the newest run); binned with --bins")
     who.add_argument("--ensemble", help="an ensemble's ratio of bin means")
     p.add_argument("--ratio", choices=RATIOS, action="append", help="d_B / d_Wq (repeatable; default: both)")
     p.add_argument("--dim", type=int, choices=(0, 1), default=0, help="0 (components) or 1 (loops)")
@@ -154,10 +167,8 @@ def _check(parser, args):
         sub.error(f"--q: only with --metric wasserstein, not with --metric {metric}")
     if metric == "wasserstein" and getattr(args, "q", None) is None:
         sub.error("--metric wasserstein needs --q")
-    if args.kind == "distances" and args.ensemble and (args.from_ is not None or args.to is not None):
-        sub.error("--from/--to: a run's series only, not with --ensemble")
-    if args.kind == "distances" and args.ensemble is None and (args.bins or args.bin_width or args.axis != "rho"):
-        sub.error("--bins/--bin-width/--axis: only with --ensemble")
+    if args.kind == "distances" and _binned(args) and (args.from_ is not None or args.to is not None):
+        sub.error("--from/--to select frames of a run's series, not bins (--ensemble, --bins, --bin-count, --axis)")
     if args.kind == "diagram" and args.store and args.run:
         sub.error("--run: not with --store (a store holds one run)")
     for option in ("run_file", "store"):
@@ -167,7 +178,7 @@ def _check(parser, args):
 
 
 def _binning(args):
-    return {"bins": args.bins, "bin_width": args.bin_width, "axis": args.axis}
+    return {"bin_width": args.bins, "bins": args.bin_count, "axis": args.axis}
 
 
 def _distance(args):
@@ -192,20 +203,24 @@ def _draw(args):
         if args.kind == "diagram":
             d = [c.diagram(args.frame, run=args.run, dim=k, force=args.force) for k in (0, 1)]
             return figures.diagrams(*d, title=f"{args.run or 'newest run'} frame {args.frame}, {args.force} forces")
-        if args.kind == "distances" and args.ensemble is None:
+        if args.kind == "distances" and not _binned(args):
             return figures.distances(c.series(run=args.run, force=args.force, from_=args.from_, to=args.to,
                                               **_distance(args)))
         if args.kind == "distances":
-            return figures.ensemble(c.ensemble_series(ensemble=args.ensemble, force=args.force, **_distance(args),
-                                                      **_binning(args)))
+            who = {"ensemble": args.ensemble} if args.ensemble else {"run": args.run or c.run()["run"]}
+            return figures.ensemble(c.ensemble_series(**who, force=args.force, **_distance(args), **_binning(args)))
         if args.kind == "ensemble":
             curves = [c.ensemble_series(ensemble=e, force=force, **_distance(args), **_binning(args))
                       for e in args.ensemble for force in (args.force or ["normal"])]
             return figures.ensemble(curves)
+        if args.kind == "ratio" and not _binned(args):
+            curves = [c.series(None, run=args.run, ratio=r, dim=args.dim, force=args.force, essential=args.essential)
+                      for r in (args.ratio or list(RATIOS))]
+            return figures.ratio(curves)
         if args.kind == "ratio":
-            curves = [c.ensemble_series(ensemble=args.ensemble, run=None if args.ensemble else
-                                        (args.run or c.run()["run"]), ratio=r, dim=args.dim, force=args.force,
-                                        essential=args.essential, **_binning(args))
+            who = {"ensemble": args.ensemble} if args.ensemble else {"run": args.run or c.run()["run"]}
+            curves = [c.ensemble_series(**who, ratio=r, dim=args.dim, force=args.force, essential=args.essential,
+                                        **_binning(args))
                       for r in (args.ratio or list(RATIOS))]
             return figures.ratio(curves)
         if args.kind == "blocks":
@@ -223,8 +238,8 @@ def main(argv=None):
         fig.savefig(args.out, dpi=150)
     except RpcError as e:
         print(f"python3 -m fnet plot {args.kind}: {e.message}", file=sys.stderr)
-        if e.code in (-32001, -32002):
-            return EXIT_UNKNOWN
+        if e.code in (-32001, -32002) or (e.code == -32005 and "ensemble" in (e.data or {})):
+            return EXIT_UNKNOWN  # an unknown run, frame or ensemble
         return EXIT_USAGE if e.code == -32602 else EXIT_SERVER
     except (ConnectionError, OSError) as e:
         if isinstance(e, FileNotFoundError) or not hasattr(args, "host"):

@@ -128,6 +128,24 @@ def _ensemble_series(result):
     return out
 
 
+_BIN_ARRAYS = ("rho_lo", "rho_hi", "rho", "mean", "stderr", "n", "z", "infinite")
+
+
+def apply_bins(curve, change):
+    """The curve after an ensemble.bins notification: its bins (named by rho_lo) replace or join
+    those of `curve`, its `removed` ones are dropped, and its head (runs, ...) is the new one."""
+    bins = {lo: {key: curve[key][k] for key in _BIN_ARRAYS} for k, lo in enumerate(curve["rho_lo"])}
+    for lo in change.get("removed", []):
+        bins.pop(lo, None)
+    for k, lo in enumerate(change["rho_lo"]):
+        bins[lo] = {key: change[key][k] for key in _BIN_ARRAYS}
+    out = Result({k: v for k, v in change.items() if k not in _BIN_ARRAYS + ("removed", "subscription")})
+    order = sorted(bins)
+    for key, dtype in zip(_BIN_ARRAYS, (float, float, float, float, float, np.int64, float, bool)):
+        out[key] = np.array([bins[lo][key] for lo in order], dtype=dtype)
+    return out
+
+
 def _blocks(result):
     """blocks.get's cells as k x k arrays indexed [row, col] (row 0: lowest y)."""
     out = Result(result)
@@ -156,17 +174,21 @@ class Subscription:
     long); next(timeout) waits at most `timeout` seconds and returns None when none came. Leaving a
     with-block, or close(), unsubscribes and closes the connection."""
 
-    def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert):
+    def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert, track=None):
         self._conn = _Connection(host, port, timeout)
         self._notification = notification
         self._unsubscribe = unsubscribe
         self._convert = convert
+        self._track = track
         try:
             self.reply = self._conn.call(method, params)
         except BaseException:
             self._conn.close()
             raise
         self.id = self.reply["subscription"]
+        if track:
+            self.reply = convert(self.reply)
+            self.curve = self.reply  # the subscribed curve as of the last notification taken
         self.unsubscribed = None  # the server's word that the subscription ended, once closed
 
     def __iter__(self):
@@ -191,7 +213,10 @@ class Subscription:
                 return None
             params = message.get("params", {})
             if message.get("method") == self._notification and params.get("subscription") == self.id:
-                return self._convert(params)
+                point = self._convert(params)
+                if self._track:
+                    self.curve = self._track(self.curve, point)
+                return point
 
     def close(self):
         if self._conn is None:
@@ -307,9 +332,11 @@ class Client:
 
     def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=0, force="normal", q=None,
                            essential="floor", bin_width=None, bins=None, axis=None, ratio=None):
-        """ensemble.subscribe: an iterator of ensemble.bins notifications with numpy arrays."""
+        """ensemble.subscribe: an iterator of ensemble.bins notifications (the bins that changed)
+        with numpy arrays; `reply` is the curve when subscribing and `curve` the curve with every
+        notification taken so far applied (apply_bins)."""
         return Subscription(self.host, self.port, self.timeout, "ensemble.subscribe", _ensemble_params(**locals()),
-                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series)
+                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series, apply_bins)
 
 
 def _ensemble_params(self=None, **given):
