@@ -30,9 +30,12 @@ constexpr const char* kUsageText =
     "\n"
     "commands:\n"
     "  runs       the runs the server knows, newest activity last\n"
+    "  ensembles  the ensembles of realizations, their runs and mean rho_J: [--format table|csv|json]\n"
     "  query      a distance time series: --metric bottleneck|wasserstein1|wasserstein2|wasserstein [--q Q]\n"
     "             [--run R] [--dim 0|1] [--force normal|tangential] [--essential floor|sentinel|separate]\n"
-    "             [--from F] [--to T] [--format table|csv|json]\n"
+    "             [--from F] [--to T] [--format table|csv|json]; binned over an ensemble's runs:\n"
+    "             --ensemble E [--bins WIDTH | --bin-count N] [--axis rho|rho-minus-rho-j];\n"
+    "             d_B / d_Wq: --ratio wasserstein1|wasserstein2 (per frame, or of the bin means)\n"
     "  watch      live view of a run (frames, rho, Z, latest distances, trend): [--run R] [--metric M]\n"
     "             [--dim D] [--force F] [--plain] [--until-complete]; Ctrl-C leaves\n"
     "  diagram    a frame's persistence diagram: --frame K [--run R] [--dim D] [--force F]\n"
@@ -45,8 +48,8 @@ constexpr const char* kUsageText =
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
     "  --port P (default $FNET_PORT, else 7707)\n"
     "exit codes: 0 ok, 1 a failure of fnetctl itself (an answer it cannot read, output it cannot\n"
-    "            write), 2 bad usage or parameter, 3 server unreachable, 4 unknown run or frame,\n"
-    "            5 other server error\n"
+    "            write), 2 bad usage or parameter, 3 server unreachable, 4 unknown run, frame or\n"
+    "            ensemble, 5 other server error\n"
     "Run 'fnetctl <command> --help' for a command's options.\n";
 
 // Connects on first use, so --help and bad options never need a server.
@@ -74,16 +77,19 @@ struct SeriesOptions {
   long long dim = 0;
   double q = 0;
 
-  void add(po::options_description& o, bool with_metric) {
+  // `metric_required` false: the command checks --metric itself (query: --ratio stands in for it).
+  void add(po::options_description& o, bool with_metric, bool metric_required = true) {
     o.add_options()("help,h", "show this help")("run", po::value(&run), "run id (default: the newest run)")(
         "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
         "force", po::value(&force)->default_value("normal"), "normal or tangential force network");
-    if (with_metric)
-      o.add_options()("metric", po::value(&metric)->required(),
-                      "bottleneck, wasserstein1, wasserstein2 or wasserstein (with --q)")(
+    if (with_metric) {
+      auto* value = po::value(&metric);
+      if (metric_required) value->required();
+      o.add_options()("metric", value, "bottleneck, wasserstein1, wasserstein2 or wasserstein (with --q)")(
           "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
           "essential", po::value(&essential)->default_value("floor"),
           "never-dying classes: floor, sentinel or separate");
+    }
   }
   json checked(const po::variables_map& vm) const {
     json p = {{"dim", dim_option(dim)}, {"force", to_string(force_option(force))}};
@@ -92,8 +98,8 @@ struct SeriesOptions {
       const MetricChoice choice = metric_option(metric, vm.count("q") ? std::optional(q) : std::nullopt);
       p["metric"] = choice.name;
       if (vm.count("q")) p["q"] = q;
-      p["essential"] = to_string(essential_option(essential));
     }
+    if (vm.count("essential")) p["essential"] = to_string(essential_option(essential));
     return p;
   }
 };
@@ -156,10 +162,13 @@ void print_series_csv(const json& r) {
 void print_series_table(const json& r) {
   const json& infinite = r.value("infinite", json());
   std::cout << "run " << r["run"].get<std::string>() << ", " << r["metric"].get<std::string>()
+            << (r.contains("ratio") ? " / " + r["ratio"].get<std::string>() : "")
             << (r.contains("q") && r["metric"] == "wasserstein" ? " q=" + exact_number(r["q"].get<double>()) : "")
             << ", PD" << r["dim"].get<int>() << ", " << r["force"].get<std::string>()
             << " forces, essential=" << r["essential"].get<std::string>()
-            << "; value[k] = distance from the previous frame (-: none; inf: infinite)\n"
+            << (r.contains("ratio") ? "; value[k] = d_B / d_Wq of the step from the previous frame"
+                                    : "; value[k] = distance from the previous frame")
+            << " (-: none; inf: infinite)\n"
             << std::setw(7) << "frame" << std::setw(11) << "rho" << std::setw(9) << "Z" << std::setw(16) << "value"
             << "\n";
   for (std::size_t k = 0; k < r["frame"].size(); ++k)
@@ -169,18 +178,29 @@ void print_series_table(const json& r) {
 }
 
 int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
-  po::options_description o("usage: fnetctl query --metric M [options]\n\noptions");
+  po::options_description o(
+      "usage: fnetctl query --metric M [options]\n"
+      "       fnetctl query --ensemble E --metric M [--bins W | --bin-count N] [--axis rho|rho-minus-rho-j]\n"
+      "       fnetctl query [--ensemble E] --ratio wasserstein1|wasserstein2 [options]\n\n"
+      "A run's series (series.get), or with --ensemble (or --bins, --bin-count, --axis and a --run)\n"
+      "the curve binned in rho (ensemble.series): per bin rho_lo, rho_hi, the mean rho, the mean\n"
+      "distance, its standard error, the number of values n and the mean Z.\n\noptions");
   SeriesOptions c;
-  c.add(o, true);
+  c.add(o, true, false);
+  CurveOptions curve;
+  curve.add(o);
   long long from = 0, to = 0;
   std::string format = "table";
   o.add_options()("from", po::value(&from), "first frame index")("to", po::value(&to), "last frame index")(
       "format", po::value(&format)->default_value("table"),
-      "table, csv (exact numbers; columns frame,step,time,rho,z,previous,value) or json (the API's answer)");
+      "table, csv (exact numbers; columns frame,step,time,rho,z,previous,value, or for a binned curve "
+      "rho_lo,rho_hi,rho,mean,stderr,n,z) or json (the API's answer)");
   po::variables_map vm;
   if (!parse_command(o, args, &vm)) return kOk;
   format_option(format, {"table", "csv", "json"});
   json p = c.checked(vm);
+  curve.check(vm, p);
+  if (curve.binned(vm)) return curve_query(rpc(), p, format);
   if (vm.count("from")) p["from"] = frame_option("--from", from);
   if (vm.count("to")) p["to"] = frame_option("--to", to);
   if (vm.count("from") && vm.count("to") && from > to)
@@ -269,6 +289,8 @@ int cmd_distance(Connection& rpc, const std::vector<std::string>& args) {
   return kOk;
 }
 
+int cmd_ensembles(Connection& rpc, const std::vector<std::string>& args) { return ensembles_command(rpc(), args); }
+
 int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
   po::options_description o("usage: fnetctl status [--format table|json]\n\noptions");
   std::string format = "table";
@@ -320,11 +342,9 @@ int run(std::vector<std::string> args) {
   try {
     if (command == "watch") return watch_command(at, args);
     using Fn = int (*)(Connection&, const std::vector<std::string>&);
-    const std::map<std::string, Fn> commands = {{"runs", cmd_runs},
-                                                {"query", cmd_query},
-                                                {"diagram", cmd_diagram},
-                                                {"distance", cmd_distance},
-                                                {"status", cmd_status}};
+    const std::map<std::string, Fn> commands = {{"runs", cmd_runs},         {"ensembles", cmd_ensembles},
+                                                {"query", cmd_query},       {"diagram", cmd_diagram},
+                                                {"distance", cmd_distance}, {"status", cmd_status}};
     const auto it = commands.find(command);
     if (it == commands.end()) {
       std::cerr << "fnetctl: unknown command '" << command << "'\n\n" << kUsageText;
@@ -340,7 +360,8 @@ int run(std::vector<std::string> args) {
     return kUnreachable;
   } catch (const CallError& e) {
     std::cerr << "fnetctl " << command << ": " << e.what() << "\n";
-    if (e.code() == rpc::kUnknownRun || e.code() == rpc::kUnknownFrame) return kUnknown;
+    if (e.code() == rpc::kUnknownRun || e.code() == rpc::kUnknownFrame || e.code() == rpc::kUnknownEnsemble)
+      return kUnknown;
     if (e.code() == rpc::kInvalidParams) return kUsage;
     return kServerError;
   } catch (const std::exception& e) {

@@ -22,6 +22,7 @@ enum Code : int {
   kUnknownFrame = -32002,  // data.run, data.frame
   kTooManySubscriptions = -32003,
   kServerBusy = -32004,
+  kUnknownEnsemble = -32005,  // data.ensemble: the ensemble named, which no announced run belongs to
 };
 
 // Thrown by method handlers; becomes an error response with this code, message and data.

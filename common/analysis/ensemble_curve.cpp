@@ -49,8 +49,14 @@ std::vector<CurveBin> bin_curve(std::span<const CurveSample> samples, const RhoB
 
   std::map<std::int64_t, std::vector<std::size_t>> bins;
   if (by_width) {
-    for (const std::size_t k : usable)
-      bins[static_cast<std::int64_t>(std::floor(samples[k].rho / binning.width))].push_back(k);
+    // Converting a double beyond 64 bits to an integer is undefined: refuse such a width instead.
+    constexpr double kIndexLimit = 0x1p62;
+    for (const std::size_t k : usable) {
+      const double index = std::floor(samples[k].rho / binning.width);
+      if (!(std::abs(index) < kIndexLimit))
+        throw std::invalid_argument("bin width too fine for the samples: a bin index leaves 64 bits");
+      bins[static_cast<std::int64_t>(index)].push_back(k);
+    }
     for (const auto& [index, members] : bins)
       out.push_back(summarize(samples, members, static_cast<double>(index) * binning.width,
                               static_cast<double>(index + 1) * binning.width));

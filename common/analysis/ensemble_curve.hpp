@@ -37,7 +37,8 @@ struct CurveBin {
 };
 
 // Bins holding at least one sample, in increasing rho. Throws std::invalid_argument unless exactly
-// one of width, count is positive (and finite).
+// one of width, count is positive (and finite), or when a width is so fine that a sample's bin
+// index does not fit 62 bits.
 std::vector<CurveBin> bin_curve(std::span<const CurveSample> samples, const RhoBinning& binning);
 
 // numerator / denominator bin by bin, for the bins both have (matched by their rho_lo): the ratio

@@ -15,7 +15,8 @@ namespace fnet::analyze {
 
 int publish_command(const std::vector<std::string>& args) {
   po::options_description options(
-      "usage: fnet-analyze publish (--run-file F | --csv-dir DIR --run-id R) [--rate FPS] [--domain D]\n\n"
+      "usage: fnet-analyze publish (--run-file F | --csv-dir DIR --run-id R) [--ensemble E] [--rate FPS]\n"
+      "       [--domain D]\n\n"
       "Publishes the run's announcement and every frame on the DDS topics fnet_RunInfo and\n"
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
       "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n\n"

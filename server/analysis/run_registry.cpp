@@ -164,7 +164,7 @@ void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> fram
     }
   ++counters_.analyzed;
   recent_commits_.push_back(Clock::now());
-  const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances};
+  const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances, run.info.ensemble};
   run.committed[frame->header.index] = std::move(frame);
   for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
     const bool keep =
@@ -282,13 +282,28 @@ std::string Registry::newest_run() const {
   return newest ? newest->run_id : std::string();
 }
 
+std::vector<Registry::MemberRun> Registry::ensemble_members(const std::string& ensemble) const {
+  std::vector<MemberRun> out;
+  if (ensemble.empty()) return out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, run] : runs_) {
+    if (!run.has_info || run.info.ensemble != ensemble) continue;
+    MemberRun& m = out.emplace_back(MemberRun{id, {}});
+    m.frames.reserve(run.committed.size());
+    for (const auto& [index, frame] : run.committed) m.frames.push_back(frame);
+  }
+  return out;
+}
+
 std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener) {
   std::lock_guard lock(mutex_);
   const std::uint64_t subscription = next_subscription_++;
   for (const auto& [id, run] : runs_) {
     if (!run_id.empty() && id != run_id) continue;
     for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end(); ++it)
-      if (!listener(subscription, {id, it->second->header, it->second->previous, it->second->distances})) return 0;
+      if (!listener(subscription,
+                    {id, it->second->header, it->second->previous, it->second->distances, run.info.ensemble}))
+        return 0;
   }
   subscriptions_[subscription] = {run_id, std::move(listener)};
   return subscription;

@@ -33,6 +33,7 @@ struct SeriesPoint {
   FrameHeader header;
   std::optional<std::uint32_t> previous;
   StepDistances distances;
+  std::string ensemble;  // the run's, as announced (empty: none, or not announced yet)
 };
 
 // Called with the subscription's id for each committed frame, under the registry's lock, in
@@ -86,6 +87,15 @@ class Registry {
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
   std::string newest_run() const;
+
+  // A run and its committed frames in index order (copies of the pointers; the diagrams shared).
+  struct MemberRun {
+    std::string run_id;
+    std::vector<std::shared_ptr<const AnalyzedFrame>> frames;
+  };
+  // The runs announced as members of `ensemble`, in name order, taken under one lock so that the
+  // members are seen at one instant. Empty when no run names it.
+  std::vector<MemberRun> ensemble_members(const std::string& ensemble) const;
 
   // Registers a listener; `backlog` receives, under the same lock, every committed point of
   // `run_id` (or of every run when empty) with frame index > since, so nothing is missed or

@@ -12,7 +12,9 @@ namespace po = boost::program_options;
 void RunSource::add_options(po::options_description& options) {
   options.add_options()("run-file", po::value(&run_file), "HDF5 run file written by fnet-simd --out")(
       "csv-dir", po::value(&csv_dir), "folder exported by fnet-simd --export-csv (index.csv + frame_NNNN_*.csv)")(
-      "run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)");
+      "run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)")(
+      "ensemble", po::value(&ensemble),
+      "the ensemble of realizations the run belongs to (overrides the run file's; a CSV folder has none)");
 }
 
 std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
@@ -24,6 +26,9 @@ std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
   }
   if (!run_id.empty())
     if (const std::string problem = run_id_problem(run_id); !problem.empty()) throw po::error("--run-id: " + problem);
+  if (!ensemble.empty())
+    if (const std::string problem = name_problem(ensemble, "ensemble name"); !problem.empty())
+      throw po::error("--ensemble: " + problem);
   RunInfo info;
   std::vector<RunFrame> frames;
   if (!run_file.empty()) {
@@ -44,6 +49,7 @@ std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
     info.config_json = "{}";
     if (!frames.empty()) info.particles = static_cast<std::uint32_t>(frames.front().frame.particle_count);
   }
+  if (!ensemble.empty()) info.ensemble = ensemble;
   if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) throw po::error(problem);
   return {std::move(info), std::move(frames)};
 }

@@ -11,9 +11,10 @@
 namespace fnet::analyze {
 
 struct RunSource {
-  std::string run_file, csv_dir, run_id;
+  std::string run_file, csv_dir, run_id, ensemble;
   void add_options(boost::program_options::options_description& options);
-  // Reads the run; the run id is the file's unless --run-id overrides it (required for CSV).
+  // Reads the run; the run id is the file's unless --run-id overrides it (required for CSV), and so
+  // is its ensemble with --ensemble.
   std::pair<RunInfo, std::vector<RunFrame>> read() const;
 };
 

@@ -16,7 +16,7 @@ namespace fnet::analyze {
 
 int store_command(const std::vector<std::string>& args) {
   po::options_description options(
-      "usage: fnet-analyze store (--run-file F | --csv-dir DIR --run-id R) --data-dir D\n\n"
+      "usage: fnet-analyze store (--run-file F | --csv-dir DIR --run-id R) [--ensemble E] --data-dir D\n\n"
       "Analyzes every frame of a recorded run in index order (validation, diagrams of both force\n"
       "networks, the twelve distances to the previous accepted frame) and writes D/RUN.h5 in the\n"
       "schema fnet-server uses (proto/store.md), replacing any store of that run there.\n\n"

@@ -18,6 +18,7 @@
 #include "client/rpc_client.hpp"
 #include "common/analysis/frame_analysis.hpp"
 #include "common/store/analysis_store.hpp"
+#include "tests/e2e/line_connection.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -81,13 +82,23 @@ Server start_server(const fs::path& data_dir, int domain, const fs::path& log, s
 }
 
 std::unique_ptr<Process> publish(const fs::path& run_dir, const std::string& run_id, int domain, const fs::path& log,
-                                 double rate = 0, double linger = 0, double wait_for_reader = 30) {
-  return std::make_unique<Process>(
-      FNET_ANALYZE,
-      std::vector<std::string>{"publish", "--csv-dir", run_dir.string(), "--run-id", run_id, "--domain",
-                               std::to_string(domain), "--rate", std::to_string(rate), "--linger",
-                               std::to_string(linger), "--wait-for-reader", std::to_string(wait_for_reader)},
-      log, dds_environment());
+                                 double rate = 0, double linger = 0, double wait_for_reader = 30,
+                                 const std::string& ensemble = "") {
+  std::vector<std::string> args{"publish",
+                                "--csv-dir",
+                                run_dir.string(),
+                                "--run-id",
+                                run_id,
+                                "--domain",
+                                std::to_string(domain),
+                                "--rate",
+                                std::to_string(rate),
+                                "--linger",
+                                std::to_string(linger),
+                                "--wait-for-reader",
+                                std::to_string(wait_for_reader)};
+  if (!ensemble.empty()) args.insert(args.end(), {"--ensemble", ensemble});
+  return std::make_unique<Process>(FNET_ANALYZE, args, log, dds_environment());
 }
 
 // Polls runs.list until `run` has `frames` committed and nothing pending.
@@ -545,63 +556,14 @@ TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
   EXPECT_NE(text.find("--bind 'localhost:7707'"), std::string::npos) << text;
 }
 
-// One connection, whole lines: requests as a document writes them, every reply and notification.
-class LineConnection {
- public:
-  explicit LineConnection(unsigned short port) : socket_(io_) {
-    socket_.connect({boost::asio::ip::make_address("127.0.0.1"), port});
-  }
-  void send(const std::string& line) { boost::asio::write(socket_, boost::asio::buffer(line + "\n")); }
-  std::optional<json> next(std::chrono::milliseconds timeout = 30s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (true) {
-      if (const auto nl = buffer_.find('\n'); nl != std::string::npos) {
-        const std::string line = buffer_.substr(0, nl);
-        buffer_.erase(0, nl + 1);
-        return json::parse(line);
-      }
-      const auto left =
-          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-      if (left.count() <= 0) return std::nullopt;
-      pollfd p{socket_.native_handle(), POLLIN, 0};
-      if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
-      char chunk[65536];
-      boost::system::error_code ec;
-      const std::size_t n = socket_.read_some(boost::asio::buffer(chunk), ec);
-      if (ec) return std::nullopt;
-      buffer_.append(chunk, n);
-    }
-  }
-  // The response to request `id`; notifications that come first are kept in `notifications`.
-  json reply(const json& id) {
-    while (const auto m = next()) {
-      if (m->contains("id") && (*m)["id"] == id) return *m;
-      notifications.push_back(*m);
-    }
-    throw std::runtime_error("no reply to request " + id.dump());
-  }
-  json call(const std::string& method, const json& params) {
-    const json id = next_id_++;
-    send(json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}}.dump());
-    return reply(id);
-  }
-  std::vector<json> notifications;
-
- private:
-  boost::asio::io_context io_;
-  boost::asio::ip::tcp::socket socket_;
-  std::string buffer_;
-  int next_id_ = 1000;
-};
-
-// A three-frame run "demo", served: what proto/api.md's examples are written against.
+// A three-frame run "demo" of ensemble "demo-ens", served: what proto/api.md's examples are written against.
 struct DemoRun {
   testing::TempDir tmp;
   Server server;
   explicit DemoRun(int domain) {
     const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2});
     server = start_server(tmp.path() / "data", domain, tmp.path() / "server.log");
-    auto pub = publish(run_dir, "demo", domain, tmp.path() / "publish.log");
+    auto pub = publish(run_dir, "demo", domain, tmp.path() / "publish.log", 0, 0, 30, "demo-ens");
     EXPECT_EQ(pub->wait(120s), 0);
     wait_for_frames(server.port, "demo", 3);
   }
@@ -750,7 +712,7 @@ TEST(Service, ApiDocumentListsWhatTheServerAcceptsAndItsExamplesRun) {
     EXPECT_EQ(documented, std::set<std::string>(accepted.begin(), accepted.end())) << method;
     ++methods;
   }
-  EXPECT_EQ(methods, 8u) << "methods documented";
+  EXPECT_EQ(methods, 12u) << "methods documented";
 
   // Examples: sent in order on one connection (a subscription and its unsubscription share it).
   std::istringstream lines(doc);

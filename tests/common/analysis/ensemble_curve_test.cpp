@@ -78,6 +78,13 @@ TEST(EnsembleCurve, ABinningIsAWidthOrACount) {
   EXPECT_THROW(bin_curve(s, {.width = kInf}), std::invalid_argument);
 }
 
+// A width so fine that a sample's bin index leaves 64 bits is refused, not cast (undefined).
+TEST(EnsembleCurve, AWidthWhoseBinIndicesOverflowIsRefused) {
+  const std::vector<CurveSample> s{{0.7, 0, 1}, {-0.2, 0, 2}};
+  EXPECT_THROW(bin_curve(s, {.width = 1e-300}), std::invalid_argument);
+  EXPECT_EQ(bin_curve(s, {.width = 1e-12}).size(), 2u);
+}
+
 // Against a reference written from the definitions: every sample tested against every bin's
 // bounds, sums in long double.
 TEST(EnsembleCurve, RandomEnsemblesAgainstADirectComputation) {

@@ -47,6 +47,17 @@ TEST_F(AnalyzeCli, StoreFromAMissingRunFileSaysNoSuchFile) {
               AllOf(HasSubstr("--csv-dir"), HasSubstr("no such directory")));
 }
 
+TEST_F(AnalyzeCli, AnEnsembleNameOutsideTheRunIdAlphabetIsAUsageError) {
+  std::filesystem::create_directories(dir() / "csv");
+  for (const char* command : {"store", "publish"}) {
+    std::vector<std::string> args{command,      "--csv-dir", (dir() / "csv").string(), "--run-id", "r",
+                                  "--ensemble", "mu 0.5"};
+    if (std::string(command) == "store") args.insert(args.end(), {"--data-dir", (dir() / "d").string()});
+    EXPECT_THAT(fails_with(2, args), AllOf(HasSubstr("--ensemble"), HasSubstr("mu 0.5"))) << command;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir() / "d")) << "nothing is done before the input is checked";
+}
+
 TEST_F(AnalyzeCli, StoreFromAFileThatIsNotHdf5FailsWithOne) {
   const auto text = write("notes.h5", "not HDF5\n");
   EXPECT_THAT(fails_with(1, {"store", "--run-file", text.string(), "--data-dir", (dir() / "d").string()}),

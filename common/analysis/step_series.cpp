@@ -1,0 +1,35 @@
+#include "common/analysis/step_series.hpp"
+
+#include <limits>
+
+namespace fnet {
+
+void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
+                        std::size_t from, std::vector<StepValue>& out) {
+  const bool stored = query.metric.stored && query.essential == EssentialConvention::floor;
+  for (std::size_t k = from; k < frames.size(); ++k) {
+    const AnalyzedFrame& f = *frames[k];
+    StepValue step{f.header.index, f.header.rho, f.header.z, std::nullopt};
+    if (f.previous && k > 0) {
+      if (stored) {
+        step.value = f.distances(*query.metric.stored, query.dim, query.force);
+      } else {
+        const DistanceResult r =
+            choice_distance(diagram_of(frames[k - 1]->diagrams, query.force, query.dim),
+                            diagram_of(f.diagrams, query.force, query.dim), query.metric, query.essential);
+        step.value = r.infinite ? std::numeric_limits<double>::infinity() : r.value;
+      }
+    }
+    out.push_back(step);
+  }
+}
+
+std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift) {
+  std::vector<CurveSample> out;
+  out.reserve(steps.size());
+  for (const StepValue& s : steps)
+    if (s.value) out.push_back({s.rho - shift, s.z, *s.value});
+  return out;
+}
+
+}  // namespace fnet

@@ -1,0 +1,42 @@
+// A run's distances between consecutive committed frames, as series.get serves them and the
+// ensemble curves bin them: the stored series where one answers the request (bottleneck, W1, W2
+// under the floor convention), else computed from the two frames' diagrams.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "common/analysis/analyzed_frame.hpp"
+#include "common/analysis/ensemble_curve.hpp"
+#include "common/analysis/metric_vocabulary.hpp"
+
+namespace fnet {
+
+struct StepQuery {
+  MetricChoice metric;
+  int dim = 0;
+  ForceKind force = ForceKind::normal;
+  EssentialConvention essential = EssentialConvention::floor;
+};
+
+// One committed frame; `value` (possibly +inf) is its distance from the frame committed before it,
+// none for the first frame or one without a previous accepted frame.
+struct StepValue {
+  std::uint32_t index = 0;
+  double rho = 0, z = 0;
+  std::optional<double> value;
+};
+
+// Frames in index order. Appends the values of frames[from...] to `out` (frames[from - 1] is
+// their predecessor), so that a caller holding the values of a run's first frames computes only
+// those committed since.
+void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
+                        std::size_t from, std::vector<StepValue>& out);
+
+// The samples a curve bins: each frame with a value, at rho - shift.
+std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift = 0);
+
+}  // namespace fnet

@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""ensemble.series latency over an ensemble of RUNS realizations x FRAMES frames (not run by CTest).
+
+usage: bench_ensemble.py BUILD_DIR [--runs 20] [--frames 100] [--particles 60] [--domain 76]
+
+1. fnet-simd runs RUNS small compressions (seeds 1..RUNS, --ensemble bench, no DDS, run files);
+   fnet-analyze store analyzes each into one data directory; fnet-server loads the stores.
+2. ensemble.series (bottleneck PD1, bin width 0.002) over the whole ensemble: median and 99th
+   percentile of 300 calls on one connection, the answer parsed (the goal: < 50 ms); also against
+   rho - rho_J, a ratio curve, and W_q for q = 3 (not stored: computed from the diagrams).
+3. The anchor: numpy computing the same bins from the stores read with h5py (the samples, their
+   bins, mean, standard error, count and mean Z), timed the same way; its bins are checked
+   against the served ones.
+"""
+import argparse, json, os, re, shutil, socket, statistics, subprocess, sys, tempfile, time
+
+import h5py
+import numpy as np
+
+p = argparse.ArgumentParser()
+p.add_argument("build")
+p.add_argument("--runs", type=int, default=20)
+p.add_argument("--frames", type=int, default=100)
+p.add_argument("--particles", type=int, default=60)
+p.add_argument("--domain", type=int, default=76)
+a = p.parse_args()
+
+build = os.path.abspath(a.build)
+src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+env = dict(os.environ, CYCLONEDDS_URI="file://" + os.path.join(src, "deploy", "cyclonedds-loopback.xml"))
+simd = os.path.join(build, "server/sim/fnet-simd")
+server_bin = os.path.join(build, "server/analysis/fnet-server")
+analyze = os.path.join(build, "server/analysis/fnet-analyze")
+work = tempfile.mkdtemp(prefix="fnet-bench-ensemble-")
+data = os.path.join(work, "data")
+WIDTH = 0.002
+
+
+class Rpc:
+    def __init__(self, port):
+        self.sock = socket.create_connection(("127.0.0.1", port))
+        self.file = self.sock.makefile("rwb")
+        self.id = 0
+
+    def call(self, method, params=None):
+        self.id += 1
+        self.file.write((json.dumps({"jsonrpc": "2.0", "id": self.id, "method": method, "params": params or {}}) + "\n").encode())
+        self.file.flush()
+        while True:
+            msg = json.loads(self.file.readline())
+            if msg.get("id") == self.id:
+                if "error" in msg:
+                    raise RuntimeError(msg["error"])
+                return msg["result"]
+
+
+def timed(fn, calls):
+    times = []
+    for _ in range(calls):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    times.sort()
+    return statistics.median(times) * 1e3, times[int(0.99 * (len(times) - 1))] * 1e3
+
+
+def numpy_bins(paths, column):
+    """The bins of ensemble.series (bin width WIDTH, axis rho) from the stores, with numpy."""
+    rho, z, value = [], [], []
+    for path in paths:
+        with h5py.File(path, "r", libver="latest", swmr=True) as f:
+            n = len(f["frame"])
+            previous = f["previous"][:n]
+            keep = previous >= 0
+            keep[0] = False  # the first committed frame has no previous frame in the series
+            rho.append(f["rho"][:n][keep])
+            z.append(f["z"][:n][keep])
+            value.append(f["distances"][:n, column][keep])
+    rho, z, value = np.concatenate(rho), np.concatenate(z), np.concatenate(value)
+    index = np.floor(rho / WIDTH).astype(np.int64)
+    keys, inverse, counts = np.unique(index, return_inverse=True, return_counts=True)
+    mean = np.bincount(inverse, value) / counts
+    squares = np.bincount(inverse, (value - mean[inverse]) ** 2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        stderr = np.where(counts >= 2, np.sqrt(squares / (counts - 1)) / np.sqrt(counts), np.nan)
+    return {"rho_lo": keys * WIDTH, "rho": np.bincount(inverse, rho) / counts, "mean": mean, "stderr": stderr,
+            "n": counts, "z": np.bincount(inverse, z) / counts}
+
+
+server = None
+try:
+    t = time.perf_counter()
+    for seed in range(1, a.runs + 1):
+        run_file = os.path.join(work, f"s{seed}.h5")
+        subprocess.run([simd, "--particles", str(a.particles), "--compression-speed", "1e-2", "--frames",
+                        str(a.frames), "--seed", str(seed), "--ensemble", "bench", "--no-dds", "--out", run_file,
+                        "--quiet"], check=True, stderr=subprocess.DEVNULL)
+        subprocess.run([analyze, "store", "--run-file", run_file, "--data-dir", data], check=True,
+                       stdout=subprocess.DEVNULL)
+    print(f"made {a.runs} runs x {a.frames} frames of {a.particles} disks in {time.perf_counter() - t:.1f} s",
+          file=sys.stderr)
+    log = open(os.path.join(work, "server.log"), "w")
+    server = subprocess.Popen([server_bin, "--data-dir", data, "--port", "0", "--domain", str(a.domain)],
+                              stdout=subprocess.PIPE, stderr=log, env=env, text=True)
+    rpc = Rpc(int(re.search(r":(\d+) ", server.stdout.readline()).group(1)))
+    ens = rpc.call("ensembles.list")["ensembles"][0]
+    assert ens["ensemble"] == "bench" and len(ens["runs"]) == a.runs, ens
+    samples = ens["frames"] - a.runs
+    base = {"ensemble": "bench", "dim": 1, "bin_width": WIDTH}
+    cases = [("bottleneck PD1, rho", dict(base, metric="bottleneck"), 300),
+             ("bottleneck PD1, rho - rho_J", dict(base, metric="bottleneck", axis="rho_minus_rho_j"), 300),
+             ("d_B / d_W2 PD1 (ratio curve)", dict(base, ratio="wasserstein2"), 300),
+             ("W_q q=3 PD1 (from the diagrams)", dict(base, metric="wasserstein", q=3), 10)]
+    ours = [(name, timed(lambda: rpc.call("ensemble.series", params), calls)) for name, params, calls in cases]
+
+    paths = [os.path.join(data, run + ".h5") for run in ens["runs"]]
+    anchor = timed(lambda: numpy_bins(paths, 2), 30)
+    served, expected = rpc.call("ensemble.series", cases[0][1]), numpy_bins(paths, 2)
+    assert served["n"] == expected["n"].tolist(), "the bins differ"
+    worst = max(float(np.max(np.abs(np.array(served[k], dtype=float) - expected[k]))) for k in ("rho_lo", "rho", "mean", "z"))
+
+    print(f"ensemble.series over {a.runs} runs x {a.frames} frames ({samples} samples, {len(served['n'])} bins "
+          f"of width {WIDTH}), {a.particles} disks")
+    print(f"{'measure':64} {'median / p99 (ms)':>20}")
+    for name, (median, p99) in ours:
+        print(f"{'fnet-server ensemble.series: ' + name:64} {median:9.2f} / {p99:7.2f}")
+    print(f"{'anchor: numpy + h5py from the stores, same bins':64} {anchor[0]:9.2f} / {anchor[1]:7.2f}")
+    print(f"goal: < 50 ms; numpy's bins match the served ones (largest difference {worst:.1e})")
+finally:
+    if server:
+        server.terminate()
+        server.wait()
+    shutil.rmtree(work, ignore_errors=True)
