@@ -12,6 +12,7 @@
 namespace fnet::client {
 
 int watch_command(const Endpoint& at, const std::vector<std::string>& args);
+int blocks_command(const Endpoint& at, const std::vector<std::string>& args);
 
 // fnetctl ensembles.
 int ensembles_command(RpcClient& rpc, const std::vector<std::string>& args);

@@ -44,6 +44,9 @@ constexpr const char* kUsageText =
     "             [--q Q] [--run R] [--other-run R2] [--dim D] [--force F]\n"
     "             [--essential floor|sentinel|separate] [--delta D]\n"
     "  status     server health: uptime, frames/s, lag, rejected frames with reasons\n"
+    "  blocks     where the network changed: distances cell by cell over a k x k grid between two frames:\n"
+    "             --frame A --other-frame B --metric M [--k 2] [--q Q] [--run R] [--dim D] [--force F]\n"
+    "             [--essential E] [--format table|csv|json]\n"
     "\n"
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
     "  --port P (default $FNET_PORT, else 7707)\n"
@@ -341,6 +344,7 @@ int run(std::vector<std::string> args) {
   args.erase(args.begin());
   try {
     if (command == "watch") return watch_command(at, args);
+    if (command == "blocks") return blocks_command(at, args);
     using Fn = int (*)(Connection&, const std::vector<std::string>&);
     const std::map<std::string, Fn> commands = {{"runs", cmd_runs},         {"ensembles", cmd_ensembles},
                                                 {"query", cmd_query},       {"diagram", cmd_diagram},

@@ -23,6 +23,7 @@ enum Code : int {
   kTooManySubscriptions = -32003,
   kServerBusy = -32004,
   kUnknownEnsemble = -32005,  // data.ensemble: the ensemble named, which no announced run belongs to
+  kNoNetwork = -32006,        // data.run, data.frame, data.reason: the frame's force network is not stored
 };
 
 // Thrown by method handlers; becomes an error response with this code, message and data.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -16,6 +17,9 @@ struct AnalyzedFrame {
   FrameDiagramSet diagrams;
   std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
   StepDistances distances;                // meaningful only with a previous frame
+  // The force network as received, for the store to keep; null in the frames fnet-server keeps in
+  // memory (it reads networks back from the store) and in frames read back from a store.
+  std::shared_ptr<const Frame> network;
 };
 
 struct RejectedFrame {

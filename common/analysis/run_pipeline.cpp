@@ -8,8 +8,8 @@ namespace fnet {
 DiagramOutcome DiagramJob::run() const {
   DiagramOutcome out{index, std::nullopt, {}};
   try {
-    validate(frame.frame);
-    out.diagrams = analyze_frame(frame.frame);
+    validate(*frame);
+    out.diagrams = analyze_frame(*frame);
   } catch (const std::exception& e) {
     out.reason = e.what();
   }
@@ -43,8 +43,9 @@ RunPipeline::Admission RunPipeline::admit(RunFrame frame, PipelineClock::time_po
   Slot& slot = pending_[index];
   slot.frame = std::make_shared<AnalyzedFrame>();
   slot.frame->header = frame.header;
+  slot.frame->network = std::make_shared<const Frame>(std::move(frame.frame));
   slot.arrived = now;
-  return {Arrival::queued, DiagramJob{index, std::move(frame)}};
+  return {Arrival::queued, DiagramJob{index, slot.frame->network}};
 }
 
 std::vector<DistanceJob> RunPipeline::analyzed(DiagramOutcome outcome) {
@@ -55,6 +56,7 @@ std::vector<DistanceJob> RunPipeline::analyzed(DiagramOutcome outcome) {
   } else {
     slot.reason = std::move(outcome.reason);
     slot.stage = Stage::rejected;
+    slot.frame->network.reset();
   }
   return advance();
 }

@@ -37,10 +37,11 @@ struct DiagramOutcome {
   std::string reason;                       // why it was rejected
 };
 
-// Validation and diagrams of one frame.
+// Validation and diagrams of one frame. The network is shared with the pipeline's frame, which
+// passes it on with the accepted frame (AnalyzedFrame::network) for the store to keep.
 struct DiagramJob {
   std::uint32_t index = 0;
-  RunFrame frame;
+  std::shared_ptr<const Frame> frame;
   DiagramOutcome run() const;
 };
 

@@ -19,6 +19,7 @@ constexpr std::size_t kInfoBytes = 16384;   // one run announcement, as JSON
 constexpr std::size_t kReasonBytes = 1024;  // one rejection reason
 constexpr std::size_t kCounts = 6;          // vertices, edges, triangles of normal, then tangential
 constexpr std::size_t kOffsets = 5;         // start of the 4 diagrams in /points, and the end
+constexpr std::size_t kNetworkOffsets = 4;  // the frame's rows [begin, end) in particles, in the contacts
 
 h5::Datatype fixed_string(std::size_t bytes) {
   h5::Datatype type(H5Tcopy(H5T_C_S1), "H5Tcopy");
@@ -57,6 +58,37 @@ std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t 
   return out;
 }
 
+// The network of row `row` of an open store, whose frame is `index`; nullopt when not stored.
+std::optional<Frame> network_at(hid_t file, std::size_t row, const std::string& run_id, std::uint32_t index,
+                                std::uint64_t particle_count, const std::string& where) {
+  h5::Dataset flags(H5Dopen2(file, "has_network", H5P_DEFAULT), where + ": open has_network");
+  std::uint8_t stored = 0;
+  h5::read_rows(flags.get(), H5T_NATIVE_UINT8, &stored, row, 1, 0, where + ": has_network");
+  if (!stored) return std::nullopt;
+  h5::Dataset offsets(H5Dopen2(file, "network_offsets", H5P_DEFAULT), where + ": open network_offsets");
+  std::array<std::uint64_t, kNetworkOffsets> off{};
+  h5::read_rows(offsets.get(), H5T_NATIVE_UINT64, off.data(), row, 1, kNetworkOffsets, where + ": network_offsets");
+  const std::size_t n = off[1] - off[0], m = off[3] - off[2];
+  std::vector<double> particles(3 * n), forces(2 * m);
+  std::vector<std::uint32_t> pairs(2 * m);
+  h5::Dataset p(H5Dopen2(file, "particles", H5P_DEFAULT), where + ": open particles");
+  h5::Dataset cp(H5Dopen2(file, "contact_pairs", H5P_DEFAULT), where + ": open contact_pairs");
+  h5::Dataset cf(H5Dopen2(file, "contact_forces", H5P_DEFAULT), where + ": open contact_forces");
+  h5::read_rows(p.get(), H5T_NATIVE_DOUBLE, particles.data(), off[0], n, 3, where + ": particles");
+  h5::read_rows(cp.get(), H5T_NATIVE_UINT32, pairs.data(), off[2], m, 2, where + ": contact_pairs");
+  h5::read_rows(cf.get(), H5T_NATIVE_DOUBLE, forces.data(), off[2], m, 2, where + ": contact_forces");
+  Frame f;
+  f.label = frame_label(run_id, index);
+  f.particle_count = particle_count;
+  f.particles.reserve(n);
+  for (std::size_t k = 0; k < n; ++k)
+    f.particles.push_back({particles[3 * k], particles[3 * k + 1], particles[3 * k + 2]});
+  f.contacts.reserve(m);
+  for (std::size_t k = 0; k < m; ++k)
+    f.contacts.push_back({pairs[2 * k], pairs[2 * k + 1], forces[2 * k], forces[2 * k + 1]});
+  return f;
+}
+
 }  // namespace
 
 StoreTime store_time_now() {
@@ -90,7 +122,7 @@ std::filesystem::path store_path(const std::filesystem::path& data_dir, const st
   return data_dir / (run_id + ".h5");
 }
 
-StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& run_id) {
+StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& run_id) : run_id_(run_id) {
   h5::quiet();
   std::optional<StoredRun> previous;
   if (std::filesystem::exists(path)) previous = read_store(path);  // throws if unreadable: never overwrite data
@@ -118,16 +150,53 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::create_extendible(f, "rejected_reason", fixed_string(kReasonBytes).get(), 0, 64);
     for (const char* name : {"announced_at", "committed_at", "rejected_at"})
       h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
+    h5::create_extendible(f, "has_network", H5T_NATIVE_UINT8, 0, 256);
+    h5::create_extendible(f, "network_offsets", H5T_NATIVE_UINT64, kNetworkOffsets, 256);
+    h5::create_extendible(f, "particles", H5T_NATIVE_DOUBLE, 3, 4096);
+    h5::create_extendible(f, "contact_pairs", H5T_NATIVE_UINT32, 2, 4096);
+    h5::create_extendible(f, "contact_forces", H5T_NATIVE_DOUBLE, 2, 4096);
   }
-  for (const char* name :
-       {"announcements", "announced_at", "frame", "step", "time", "rho", "z", "previous", "distances", "counts",
-        "offsets", "points", "committed_at", "rejected_frame", "rejected_reason", "rejected_at"})
+  for (const char* name : {"announcements",
+                           "announced_at",
+                           "frame",
+                           "step",
+                           "time",
+                           "rho",
+                           "z",
+                           "previous",
+                           "distances",
+                           "counts",
+                           "offsets",
+                           "points",
+                           "committed_at",
+                           "rejected_frame",
+                           "rejected_reason",
+                           "rejected_at",
+                           "has_network",
+                           "network_offsets",
+                           "particles",
+                           "contact_pairs",
+                           "contact_forces"})
     sets_.emplace(name, h5::Dataset(H5Dopen2(file_.get(), name, H5P_DEFAULT), std::string("open ") + name));
   // From here on the file stays valid for readers whatever happens to this process.
   check(H5Fstart_swmr_write(file_.get()), "H5Fstart_swmr_write " + fresh.string());
   if (previous) {
     if (previous->has_info) write_info(previous->info, previous->announced_at);
-    for (std::size_t k = 0; k < previous->frames.size(); ++k) append(previous->frames[k], previous->committed_at[k]);
+    // The networks are copied one frame at a time, so that continuing a long run's store never
+    // holds all of them.
+    std::optional<h5::File> old;
+    if (previous->schema != kStoreSchemaV1) {
+      const h5::PropertyList old_fapl = h5::latest_format();
+      old.emplace(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, old_fapl.get()), "open " + path.string());
+    }
+    for (std::size_t k = 0; k < previous->frames.size(); ++k) {
+      AnalyzedFrame& f = previous->frames[k];
+      if (old && previous->has_network[k])
+        if (auto net = network_at(old->get(), k, run_id, f.header.index, f.diagrams.normal.vertices, path.string()))
+          f.network = std::make_shared<const Frame>(std::move(*net));
+      append(f, previous->committed_at[k]);
+      f.network.reset();
+    }
     for (std::size_t k = 0; k < previous->rejected.size(); ++k) append(previous->rejected[k], previous->rejected_at[k]);
   }
   std::filesystem::rename(fresh, path);
@@ -162,6 +231,30 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
                                                   f.diagrams.normal.triangles, f.diagrams.tangential.vertices,
                                                   f.diagrams.tangential.edges, f.diagrams.tangential.triangles};
   const std::int64_t previous = f.previous ? static_cast<std::int64_t>(*f.previous) : -1;
+  const std::uint8_t has_network = f.network ? 1 : 0;
+  std::array<std::uint64_t, kNetworkOffsets> network_offsets{};
+  network_offsets[0] = network_offsets[1] = h5::row_count(file_.get(), "particles", "store");
+  network_offsets[2] = network_offsets[3] = h5::row_count(file_.get(), "contact_pairs", "store");
+  if (f.network) {
+    const Frame& net = *f.network;
+    std::vector<double> particles, forces;
+    std::vector<std::uint32_t> pairs;
+    particles.reserve(3 * net.particles.size());
+    for (const Particle& p : net.particles) particles.insert(particles.end(), {p.x, p.y, p.r});
+    pairs.reserve(2 * net.contacts.size());
+    forces.reserve(2 * net.contacts.size());
+    for (const Contact& c : net.contacts) {
+      pairs.insert(pairs.end(), {static_cast<std::uint32_t>(c.i), static_cast<std::uint32_t>(c.j)});
+      forces.insert(forces.end(), {c.fn, c.ft});
+    }
+    network_offsets[1] += net.particles.size();
+    network_offsets[3] += net.contacts.size();
+    h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.data(), net.particles.size(), 3);
+    h5::append_rows(set("contact_pairs"), H5T_NATIVE_UINT32, pairs.data(), net.contacts.size(), 2);
+    h5::append_rows(set("contact_forces"), H5T_NATIVE_DOUBLE, forces.data(), net.contacts.size(), 2);
+  }
+  h5::append_rows(set("has_network"), H5T_NATIVE_UINT8, &has_network, 1, 0);
+  h5::append_rows(set("network_offsets"), H5T_NATIVE_UINT64, network_offsets.data(), 1, kNetworkOffsets);
   h5::append_rows(set("step"), H5T_NATIVE_UINT64, &f.header.step, 1, 0);
   h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &f.header.time, 1, 0);
   h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &f.header.rho, 1, 0);
@@ -174,6 +267,18 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &f.header.index, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+  frames_.push_back(f.header.index);
+}
+
+std::optional<Frame> StoreWriter::network(std::uint32_t index) const {
+  const auto it = std::lower_bound(frames_.begin(), frames_.end(), index);
+  if (it == frames_.end() || *it != index)
+    throw h5::Error("store of run " + run_id_ + " has no committed frame " + std::to_string(index));
+  const std::size_t row = static_cast<std::size_t>(it - frames_.begin());
+  h5::Dataset counts(H5Dopen2(file_.get(), "counts", H5P_DEFAULT), "open counts");
+  std::array<std::uint64_t, kCounts> c{};
+  h5::read_rows(counts.get(), H5T_NATIVE_UINT64, c.data(), row, 1, kCounts, "store of run " + run_id_);
+  return network_at(file_.get(), row, run_id_, index, c[0], "store of run " + run_id_);
 }
 
 void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
@@ -195,8 +300,11 @@ StoredRun read_store(const std::filesystem::path& path) {
              "open " + file + " (not an HDF5 store?)");
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   const std::string schema = h5::read_string(root.get(), "schema", file);
-  if (schema != kStoreSchema) throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "'");
+  if (schema != kStoreSchema && schema != kStoreSchemaV1)
+    throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "' or '" + kStoreSchemaV1 + "'");
+  const bool v1 = schema == kStoreSchemaV1;
   StoredRun out;
+  out.schema = schema;
   out.info.run_id = h5::read_string(root.get(), "run_id", file);
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {
@@ -220,14 +328,29 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto counts = h5::read_uint64s(g, "counts", kCounts, file);
   const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
   const auto points = h5::read_doubles(g, "points", 2, file);
+  std::vector<std::uint32_t> has_network;
+  std::vector<std::uint64_t> network_offsets;
+  std::size_t particle_rows = 0, contact_rows = 0;
+  if (!v1) {
+    // Read as uint32: the flags are 0 or 1 whatever width HDF5 converts them from.
+    has_network = h5::read_uint32s(g, "has_network", 0, file);
+    network_offsets = h5::read_uint64s(g, "network_offsets", kNetworkOffsets, file);
+    particle_rows = h5::row_count(g, "particles", file);
+    contact_rows = std::min(h5::row_count(g, "contact_pairs", file), h5::row_count(g, "contact_forces", file));
+  }
   // Committed frames: those every column covers (a killed writer may leave some columns longer).
   std::size_t n = frame.size();
   for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(), distances.size() / 12,
                                 counts.size() / kCounts, offsets.size() / kOffsets})
     n = std::min(n, len);
+  if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint64_t* off = &offsets[k * kOffsets];
     if (off[kOffsets - 1] > points.size() / 2) break;  // its points never reached the file
+    const bool stored = !v1 && has_network[k] != 0;
+    if (stored && (network_offsets[k * kNetworkOffsets + 1] > particle_rows ||
+                   network_offsets[k * kNetworkOffsets + 3] > contact_rows))
+      break;  // its network never reached the file
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
@@ -240,6 +363,7 @@ StoredRun read_store(const std::filesystem::path& path) {
     a.diagrams.normal.vertices = c[0], a.diagrams.normal.edges = c[1], a.diagrams.normal.triangles = c[2];
     a.diagrams.tangential.vertices = c[3], a.diagrams.tangential.edges = c[4], a.diagrams.tangential.triangles = c[5];
     out.frames.push_back(std::move(a));
+    out.has_network.push_back(stored);
   }
   out.committed_at = optional_times(g, "committed_at", out.frames.size(), file);
   const auto rejected_frame = h5::read_uint32s(g, "rejected_frame", 0, file);
@@ -248,6 +372,23 @@ StoredRun read_store(const std::filesystem::path& path) {
     out.rejected.push_back({rejected_frame[k], rejected_reason[k]});
   out.rejected_at = optional_times(g, "rejected_at", out.rejected.size(), file);
   return out;
+}
+
+}  // namespace fnet
+
+namespace fnet {
+
+std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32_t index) {
+  const StoredRun run = read_store(path);
+  const auto it = std::find_if(run.frames.begin(), run.frames.end(),
+                               [&](const AnalyzedFrame& f) { return f.header.index == index; });
+  if (it == run.frames.end())
+    throw h5::Error(path.string() + ": run " + run.info.run_id + " has no committed frame " + std::to_string(index));
+  const std::size_t row = static_cast<std::size_t>(it - run.frames.begin());
+  if (!run.has_network[row]) return std::nullopt;
+  const h5::PropertyList fapl = h5::latest_format();
+  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + path.string());
+  return network_at(f.get(), row, run.info.run_id, index, it->diagrams.normal.vertices, path.string());
 }
 
 }  // namespace fnet

@@ -1,6 +1,6 @@
 // The analysis store: one HDF5 file per run holding its parameters, every analyzed frame's
-// diagrams and the distances to the previous accepted frame, and the rejected frames with their
-// reasons. Appended frame by frame by fnet-server, or offline by fnet-analyze store; read back on
+// diagrams, its force network and the distances to the previous accepted frame, and the rejected
+// frames with their reasons. Appended frame by frame by fnet-server, or offline by fnet-analyze store; read back on
 // restart. Schema: proto/store.md.
 #pragma once
 
@@ -18,7 +18,9 @@
 
 namespace fnet {
 
-inline constexpr const char* kStoreSchema = "fnet-store-1";
+inline constexpr const char* kStoreSchema = "fnet-store-2";
+// The first schema, without the frames' networks: still read, and continued as the current one.
+inline constexpr const char* kStoreSchemaV1 = "fnet-store-1";
 
 // When something was written to a store: seconds since the Unix epoch (UTC), NaN for a record
 // of a store written before the time was kept.
@@ -29,7 +31,9 @@ struct StoredRun {
   RunInfo info;
   bool has_info = false;                // false until the run's announcement was seen
   StoreTime announced_at = NAN;         // when the last announcement was written
-  std::vector<AnalyzedFrame> frames;    // ascending index
+  std::string schema;                   // the schema the file was written in
+  std::vector<AnalyzedFrame> frames;    // ascending index; their networks are not read (read_network)
+  std::vector<bool> has_network;        // per frame: whether its force network is stored
   std::vector<StoreTime> committed_at;  // when each frame was committed
   std::vector<RejectedFrame> rejected;
   std::vector<StoreTime> rejected_at;  // when each frame was rejected
@@ -47,15 +51,24 @@ class StoreWriter {
   void write_info(const RunInfo& info, StoreTime at = store_time_now());
   void append(const AnalyzedFrame& frame, StoreTime at = store_time_now());
   void append(const RejectedFrame& rejected, StoreTime at = store_time_now());
+  // The force network of committed frame `index`, read back from the file; nullopt when the frame
+  // was committed without one (copied from a fnet-store-1 store). Throws h5::Error for a frame the
+  // store does not hold.
+  std::optional<Frame> network(std::uint32_t index) const;
 
  private:
   hid_t set(const char* name) const;
   h5::File file_;
+  std::string run_id_;
+  std::vector<std::uint32_t> frames_;        // committed frame indices, ascending: the row of each
   std::map<std::string, h5::Dataset> sets_;  // declared after file_: closed before it
 };
 
 // Throws h5::Error naming the file and what is missing or malformed.
 StoredRun read_store(const std::filesystem::path& path);
+// The force network of committed frame `index` of a store (opened read-only in SWMR mode: not
+// for a store this process is writing, use StoreWriter::network); nullopt as StoreWriter::network.
+std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32_t index);
 
 // Where a run's store lives in a data directory (run ids are restricted to [A-Za-z0-9._-]).
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id);

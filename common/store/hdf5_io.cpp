@@ -138,6 +138,18 @@ void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, 
   check(H5Dwrite(dataset, type, memory.get(), file_space.get(), H5P_DEFAULT, data), "append rows");
 }
 
+void read_rows(hid_t dataset, hid_t type, void* out, std::size_t first, std::size_t rows, std::size_t cols,
+               const std::string& where) {
+  if (rows == 0) return;
+  Dataspace file_space(H5Dget_space(dataset), where + ": H5Dget_space");
+  const int rank = cols ? 2 : 1;
+  const std::array<hsize_t, 2> start{first, 0}, count{rows, cols};
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        where + ": select rows");
+  Dataspace memory(H5Screate_simple(rank, count.data(), nullptr), where + ": H5Screate_simple");
+  check(H5Dread(dataset, type, memory.get(), file_space.get(), H5P_DEFAULT, out), where + ": read rows");
+}
+
 std::vector<std::uint64_t> read_uint64s(hid_t loc, const char* name, std::size_t cols, const std::string& where) {
   return read_any_array<std::uint64_t>(loc, name, H5T_NATIVE_UINT64, cols, where);
 }

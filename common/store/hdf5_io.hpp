@@ -52,6 +52,9 @@ std::vector<std::int64_t> read_int64s(hid_t group, const char* name, std::size_t
 void create_extendible(hid_t loc, const char* name, hid_t type, std::size_t cols, std::size_t chunk_rows);
 // Appends `rows` rows (row-major) to an open extendible dataset.
 void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, std::size_t cols);
+// Reads rows [first, first + rows) of an open dataset (rows x cols, row-major) into `out`.
+void read_rows(hid_t dataset, hid_t type, void* out, std::size_t first, std::size_t rows, std::size_t cols,
+               const std::string& where);
 // The number of rows of a dataset.
 std::size_t row_count(hid_t loc, const char* name, const std::string& where);
 

@@ -17,6 +17,7 @@
 #include "common/codec/distance_json.hpp"
 #include "common/codec/run_info_json.hpp"
 #include "server/analysis/api_params.hpp"
+#include "server/analysis/block_methods.hpp"
 #include "server/analysis/ensemble_methods.hpp"
 
 namespace fnet::server {
@@ -333,6 +334,9 @@ MethodTable method_table(ApiContext& ctx) {
       {"distance.get",
        {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta"},
         plain([&registry](const json& p) { return distance_get(registry, p); })}},
+      {"blocks.get",
+       {{"run", "frame", "other_frame", "k", "metric", "q", "dim", "force", "essential"},
+        plain([&registry](const json& p) { return blocks_get(registry, p); })}},
       {"series.subscribe",
        {{"run", "since"},
         [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {

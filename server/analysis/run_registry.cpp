@@ -65,6 +65,7 @@ void Registry::note_rejection_locked(std::string reason) {
 
 void Registry::store_error_locked(Run& run, const std::exception& e) {
   // The analysis goes on in memory; the store stays as it was up to the failure.
+  run.store_problem = e.what();
   std::cerr << "fnet-server: store of run " << run.run_id << ": " << e.what() << "\n";
 }
 
@@ -162,6 +163,11 @@ void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> fram
     } catch (const std::exception& e) {
       store_error_locked(run, e);
     }
+  if (frame->network) {  // the store keeps the network; memory keeps only the diagrams
+    auto kept = std::make_shared<AnalyzedFrame>(*frame);
+    kept->network.reset();
+    frame = std::move(kept);
+  }
   ++counters_.analyzed;
   recent_commits_.push_back(Clock::now());
   const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances, run.info.ensemble};
@@ -271,6 +277,30 @@ std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, 
   if (it == runs_.end()) return nullptr;
   const auto f = it->second.committed.find(index);
   return f == it->second.committed.end() ? nullptr : f->second;
+}
+
+Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
+  std::lock_guard lock(mutex_);
+  const std::string what = "run " + run_id + " frame " + std::to_string(index);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end() || !it->second.committed.count(index))
+    throw NetworkUnavailable(what + ": no such analyzed frame");
+  const Run& run = it->second;
+  if (!run.store)
+    throw NetworkUnavailable(what + ": the force network is not stored: the run has no store (" + run.store_problem +
+                             ")");
+  std::optional<Frame> network;
+  try {
+    network = run.store->network(index);
+  } catch (const std::exception& e) {
+    throw NetworkUnavailable(what + ": the force network is not stored: " + e.what() +
+                             (run.store_problem.empty() ? "" : " (" + run.store_problem + ")"));
+  }
+  if (!network)
+    throw NetworkUnavailable(what + ": the force network is not stored: the frame was analyzed before the store " +
+                             "kept networks (it came from a " + kStoreSchemaV1 + " store); analyze the run again " +
+                             "(fnet-analyze store) to have it");
+  return std::move(*network);
 }
 
 std::string Registry::newest_run() const {

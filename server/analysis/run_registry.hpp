@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,12 @@ struct RunSummary {
   double seconds_since_last_frame = 0;  // since last_activity, or since the server learned of the run
 };
 
+// Why a frame's force network cannot be had: names the run, the frame and the cause.
+class NetworkUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct Counters {
   std::size_t received = 0, analyzed = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0, malformed = 0;
 };
@@ -87,6 +94,9 @@ class Registry {
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
   std::string newest_run() const;
+  // The force network of a committed frame, read back from the run's store: the committed frames
+  // in memory hold their diagrams only. Throws NetworkUnavailable.
+  Frame network(const std::string& run_id, std::uint32_t index) const;
 
   // A run and its committed frames in index order (copies of the pointers; the diagrams shared).
   struct MemberRun {
@@ -120,6 +130,7 @@ class Registry {
     std::optional<StoreTime> last_activity;
     StoreTime known_since = store_time_now();
     std::unique_ptr<StoreWriter> store;
+    std::string store_problem;  // why there is no store, or why it stopped taking frames
   };
   struct Subscription {
     std::string run_id;

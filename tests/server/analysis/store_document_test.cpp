@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -69,8 +70,11 @@ double number(const std::string& token) {
   return v;
 }
 
-// The example's output against the store as the library reads it, value for value.
-void expect_output_matches(const std::string& out, const StoredRun& store) {
+// The example's output against the store as the library reads it, value for value; networks[k]
+// is the k-th frame's network as the library reads it back.
+void expect_output_matches(const std::string& out, const StoredRun& store,
+                           const std::vector<std::optional<Frame>>& networks) {
+  ASSERT_EQ(networks.size(), store.frames.size());
   std::istringstream lines(out);
   std::string line;
   std::vector<std::vector<std::string>> rows;
@@ -84,7 +88,7 @@ void expect_output_matches(const std::string& out, const StoredRun& store) {
     SCOPED_TRACE("frame row " + std::to_string(k));
     const std::vector<std::string>& r = rows[k + 1];
     const AnalyzedFrame& f = store.frames[k];
-    ASSERT_EQ(r.size(), 13u) << out;
+    ASSERT_EQ(r.size(), networks[k] ? 19u : 15u) << out;
     EXPECT_EQ(r[0], "frame");
     EXPECT_EQ(number(r[1]), f.header.index);
     EXPECT_EQ(number(r[3]), f.header.rho);
@@ -99,6 +103,19 @@ void expect_output_matches(const std::string& out, const StoredRun& store) {
       EXPECT_EQ(number(r[11]), pd1.front().birth);
       EXPECT_EQ(number(r[12]), pd1.front().death);
     }
+    if (!networks[k]) {
+      EXPECT_EQ(r[13], "network");
+      EXPECT_EQ(r[14], "-");
+      continue;
+    }
+    const Frame& net = *networks[k];
+    EXPECT_EQ(r[13], "grains");
+    EXPECT_EQ(number(r[14]), static_cast<double>(net.particles.size()));
+    EXPECT_EQ(number(r[16]), static_cast<double>(net.contacts.size()));
+    ASSERT_FALSE(net.contacts.empty());
+    double max_fn = net.contacts.front().fn;
+    for (const Contact& c : net.contacts) max_fn = std::max(max_fn, c.fn);
+    EXPECT_EQ(number(r[18]), max_fn);
   }
   EXPECT_FALSE(store.frames.back().diagrams.normal.pd1.empty());  // some point was compared
   const std::vector<std::string>& last = rows.back();
@@ -120,7 +137,11 @@ TEST(StoreDocument, ExampleReadsAStoreWrittenByFnetAnalyze) {
   ASSERT_EQ(store.frames.size(), 3u);
   ASSERT_TRUE(store.frames[2].previous);
   EXPECT_GT(store.frames[2].distances(Metric::wasserstein2, 1, ForceKind::normal), 0);
-  expect_output_matches(run_example(tmp.path()), store);
+  std::vector<std::optional<Frame>> networks;
+  for (const AnalyzedFrame& f : store.frames)
+    networks.push_back(read_network(store_path(tmp.path() / "data", "demo"), f.header.index));
+  for (const auto& n : networks) ASSERT_TRUE(n.has_value());
+  expect_output_matches(run_example(tmp.path()), store, networks);
 }
 
 TEST(StoreDocument, ExampleReadsALiveStoreAndItsNewFrames) {
@@ -136,7 +157,8 @@ TEST(StoreDocument, ExampleReadsALiveStoreAndItsNewFrames) {
   ASSERT_EQ(before.frames.size(), 2u);
   // A writer continues the store and keeps it open, as a running server does.
   StoreWriter writer(path, "demo");
-  expect_output_matches(run_example(tmp.path()), read_store(path));
+  std::vector<std::optional<Frame>> networks{writer.network(0), writer.network(1)};
+  expect_output_matches(run_example(tmp.path()), read_store(path), networks);
   AnalyzedFrame next = before.frames[1];
   next.header.index = 2;
   next.previous = 1;
@@ -144,7 +166,8 @@ TEST(StoreDocument, ExampleReadsALiveStoreAndItsNewFrames) {
   writer.append(next);
   const StoredRun after = read_store(path);
   ASSERT_EQ(after.frames.size(), 3u);
-  expect_output_matches(run_example(tmp.path()), after);
+  networks.push_back(std::nullopt);  // appended without its network
+  expect_output_matches(run_example(tmp.path()), after, networks);
 }
 
 }  // namespace
