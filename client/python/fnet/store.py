@@ -77,9 +77,20 @@ class Store:
             cols[name] = f[name][:n]
         f["points"].refresh()
         points = f["points"][:]
-        # A frame whose diagrams point past the end of `points` is not committed.
-        if n and cols["offsets"][:, 4].max(initial=0) > len(points):
-            n = int(np.argmax(cols["offsets"][:, 4] > len(points)))
+        # A frame whose diagrams point past the end of `points`, or whose network past the end of
+        # the network datasets, is not committed.
+        committed = cols["offsets"][:, 4] <= len(points)
+        if "network_offsets" in f:
+            for name in ("network_offsets", "particles", "contact_pairs", "contact_forces"):
+                f[name].refresh()
+            net = f["network_offsets"][:n]
+            if len(net) < n:
+                committed[len(net):] = False
+                net = np.vstack([net, np.zeros((n - len(net), 4), dtype=net.dtype)])
+            committed &= (net[:, 1] <= len(f["particles"])) & (net[:, 3] <= min(len(f["contact_pairs"]),
+                                                                                 len(f["contact_forces"])))
+        if not committed.all():
+            n = int(np.argmin(committed))
             cols = {k: v[:n] for k, v in cols.items()}
         self._cols, self._points = cols, points
         return len(cols["frame"])

@@ -97,11 +97,13 @@ def test_ratio_curve_is_the_ratio_of_bin_means(client, ratio):
     w = client.ensemble_series(ensemble=ENSEMBLE, metric=ratio, dim=1, bin_width=0.05)
     assert r.ratio == ratio
     np.testing.assert_array_equal(r.rho_lo, b.rho_lo)
-    np.testing.assert_allclose(r.mean, b.mean / w.mean, rtol=1e-12)
+    with np.errstate(invalid="ignore"):  # 0 / 0 where no loop changed: null, as the server serves it
+        np.testing.assert_allclose(r.mean, b.mean / w.mean, rtol=1e-12)
     s = client.series("bottleneck", run=members()[0], dim=1, ratio=ratio)
     sb = client.series("bottleneck", run=members()[0], dim=1)
     sw = client.series(ratio, run=members()[0], dim=1)
-    np.testing.assert_allclose(s.value[1:], sb.value[1:] / sw.value[1:], rtol=1e-12)
+    with np.errstate(invalid="ignore"):
+        np.testing.assert_allclose(s.value[1:], sb.value[1:] / sw.value[1:], rtol=1e-12)
 
 
 def test_one_run_curve_and_rho_minus_rho_j(client):

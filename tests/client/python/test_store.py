@@ -107,6 +107,16 @@ def test_store_holds_what_the_server_serves(simd_run):
                                                   c.diagram(int(index), run=RUN, dim=dim, force=force))
 
 
+def test_store_keeps_the_networks_the_daemon_sent(simd_run):
+    server, out, _ = simd_run
+    with fnet.store.open_store(server.store_path(RUN)) as st, fnet.store.open_run_file(out) as run_file:
+        assert st.schema == "fnet-store-2"
+        for index in st.frames:
+            stored, sent = st.network(index), run_file.frame(index)
+            for key in ("particles", "contact_pairs", "contact_forces", "rho", "z", "step"):
+                np.testing.assert_array_equal(stored[key], sent[key], err_msg=f"frame {index} {key}")
+
+
 def test_store_read_while_the_server_writes_it(processes):
     server = start_server(processes, LIVE_DOMAIN, name="live")
     publish_lammps(processes, "slow", LIVE_DOMAIN, rate=4)
