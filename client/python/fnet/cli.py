@@ -152,16 +152,17 @@ def build_parser():
     p.add_argument("--k", type=_bounded(int, 1, 16, "an integer 1 ... 16"), default=2, help="grid of k x k cells")
     _distance_options(p, metric_required=False)
     _out(p)
+    parser.kind_parsers = kinds.choices  # for the checks argparse cannot make alone
     return parser
 
 
 def _check(parser, args):
     """What argparse cannot see alone: usage errors exit 2 before any work, naming the option."""
-    sub = parser._subparsers._group_actions[0].choices["plot"]._subparsers._group_actions[0].choices[args.kind]
+    sub = parser.kind_parsers[args.kind]
     ext = os.path.splitext(args.out)[1].lstrip(".").lower()
-    supported = figures._figure().canvas.get_supported_filetypes()
+    supported = sorted(figures._figure().canvas.get_supported_filetypes())
     if ext not in supported:
-        sub.error(f"--out: unknown image format {ext!r} of {args.out!r} (expected one of {', '.join(sorted(supported))})")
+        sub.error(f"--out: unknown image format {ext!r} of {args.out!r} (expected one of {', '.join(supported)})")
     metric = getattr(args, "metric", None)
     if getattr(args, "q", None) is not None and metric not in ("wasserstein", "wasserstein1", "wasserstein2"):
         sub.error(f"--q: only with --metric wasserstein, not with --metric {metric}")
