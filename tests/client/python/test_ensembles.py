@@ -10,7 +10,6 @@ import sys
 import numpy as np
 import pytest
 
-import fnet
 import fnet.figures as figures
 from conftest import SOURCE_DIR, simd_args, start_server, wait_for, wait_for_frames
 

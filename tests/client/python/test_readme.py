@@ -8,7 +8,6 @@ import subprocess
 import sys
 
 import numpy as np
-import pytest
 
 from conftest import LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, start_server, wait_for_frames
 
