@@ -1,0 +1,175 @@
+"""fnet.figures drawing what a real fnet-server serves (the LAMMPS frames of tests/data) and what a
+real fnet-simd run wrote: each figure is rendered to PNG, and the data of its artists is the data
+it was given, point for point."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import fnet
+import fnet.figures as figures
+from conftest import LAMMPS_FRAMES, binary, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
+
+DOMAIN = 92
+RUN = "lammps"
+
+
+@pytest.fixture(scope="module")
+def server(processes):
+    s = start_server(processes, DOMAIN)
+    publish_lammps(processes, RUN, DOMAIN)
+    wait_for_frames(s, RUN, LAMMPS_FRAMES)
+    return s
+
+
+@pytest.fixture(scope="module")
+def run_file(processes):
+    out = processes.tmp / "run.h5"
+    processes.start(simd_args(DOMAIN, out=out, frames=4, run_id="net") + ["--no-dds"], "simd.log")
+
+    def readable():
+        try:
+            with fnet.store.open_run_file(out) as f:
+                return len(f.frames) == 4
+        except OSError:
+            return False
+    wait_for(readable, "the run file")
+    return out
+
+
+@pytest.fixture()
+def client(server):
+    with server.client() as c:
+        yield c
+
+
+def render(fig, path):
+    fig.savefig(path)
+    with open(path, "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def artists(fig, gid):
+    found = [a for ax in fig.axes for a in ax.get_children() if a.get_gid() == gid]
+    assert found, f"no artist {gid!r}"
+    return found
+
+
+def test_network_draws_every_contact_of_the_force_network(run_file, tmp_path):
+    with fnet.store.open_run_file(run_file) as f:
+        frame = f.frame(3)
+    for force in ("normal", "tangential"):
+        fig = figures.network(frame, force=force)
+        render(fig, tmp_path / f"network-{force}.png")
+        (lines,) = artists(fig, "contacts")
+        forces = np.abs(frame.contact_forces[:, 0 if force == "normal" else 1])
+        keep = forces > 0
+        pairs = frame.contact_pairs[keep]
+        xy = frame.particles[:, :2]
+        segments = np.array(lines.get_segments())
+        np.testing.assert_array_equal(segments[:, 0], xy[pairs[:, 0]])
+        np.testing.assert_array_equal(segments[:, 1], xy[pairs[:, 1]])
+        np.testing.assert_allclose(lines.get_array(), forces[keep] / forces[keep].mean(), rtol=1e-15)
+        (grains,) = artists(fig, "grains")
+        assert len(grains.get_paths()) == len(frame.particles)
+
+
+def test_network_is_the_force_network_fnet_analyzes(run_file, tmp_path):
+    # A real frame with contacts planted that carry no force (and tensile ones): the figure draws
+    # exactly the edges fnet-analyze counts in its force network, normalized as it normalizes them.
+    with fnet.store.open_run_file(run_file) as f:
+        frame = f.frame(3)
+    forces = frame.contact_forces.copy()
+    forces[::5, 0] = 0.0
+    forces[1::6, 0] *= -1.0
+    forces[::7, 1] = 0.0
+    frame.contact_forces = forces
+    contacts = tmp_path / "contacts.csv"
+    with open(contacts, "w") as out:
+        out.write("i,j,fn,ft\n")
+        for (i, j), (fn, ft) in zip(frame.contact_pairs.tolist(), forces.tolist()):
+            out.write(f"{i},{j},{fn!r},{ft!r}\n")
+    particles = tmp_path / "particles.csv"
+    with open(particles, "w") as out:
+        out.write("id,x,y,r\n")
+        for k, (x, y, r) in enumerate(frame.particles.tolist()):
+            out.write(f"{k},{x!r},{y!r},{r!r}\n")
+    for force in ("normal", "tangential"):
+        r = subprocess.run([binary("FNET_ANALYZE"), "diagram", "--contacts", contacts, "--particles", particles,
+                            "--force", force], capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stderr
+        analyzed = json.loads(r.stdout)
+        (lines,) = artists(figures.network(frame, force=force), "contacts")
+        assert len(lines.get_segments()) == analyzed["edges"] < len(frame.contact_pairs)
+        # The strongest contact gives birth to the first component, at its normalized force.
+        np.testing.assert_allclose(lines.get_array().max(), max(p[0] for p in analyzed["pd0"]), rtol=1e-12)
+
+
+def test_network_change_is_after_minus_before(run_file, tmp_path):
+    with fnet.store.open_run_file(run_file) as f:
+        a, b = f.frame(2), f.frame(3)
+    fig = figures.network_change(a, b)
+    render(fig, tmp_path / "change.png")
+    (lines,) = artists(fig, "contacts")
+    before = dict(zip(map(tuple, figures.normalized_network(a)[0].tolist()), figures.normalized_network(a)[1]))
+    after = dict(zip(map(tuple, figures.normalized_network(b)[0].tolist()), figures.normalized_network(b)[1]))
+    keys = sorted(set(before) | set(after))
+    np.testing.assert_array_equal(lines.get_array(), [after.get(k, 0.0) - before.get(k, 0.0) for k in keys])
+    xy = b.particles[:, :2]
+    np.testing.assert_array_equal(np.array(lines.get_segments())[:, 0], xy[[k[0] for k in keys]])
+    unchanged = figures.network_change(b, b)
+    assert not np.any(artists(unchanged, "contacts")[0].get_array())
+
+
+def test_diagrams_draw_the_served_points_and_never_dying_ones_apart(client, tmp_path):
+    for frame in (4, 10):
+        pd0, pd1 = client.diagram(frame, run=RUN, dim=0), client.diagram(frame, run=RUN, dim=1)
+        fig = figures.diagrams(pd0, pd1, title=f"frame {frame}")
+        render(fig, tmp_path / f"diagram-{frame}.png")
+        for ax, points in zip(fig.axes, (pd0, pd1)):
+            (finite,) = [a for a in ax.get_children() if a.get_gid() == "finite"]
+            (forever,) = [a for a in ax.get_children() if a.get_gid() == "never_dies"]
+            essential = points[:, 1] == -1
+            assert len(points) and essential.any()  # every diagram here has both kinds of point
+            assert ax is fig.axes[1] or not essential.all()  # PD0 has finite points too
+            np.testing.assert_array_equal(finite.get_offsets(), points[~essential])
+            level = figures.never_dies_level(points)
+            np.testing.assert_array_equal(forever.get_offsets(),
+                                          np.column_stack([points[essential, 0], np.full(essential.sum(), level)]))
+            assert level < points[~essential, 1].min(initial=0.0)
+
+
+def test_distances_against_rho_with_z_on_a_second_axis(client, tmp_path):
+    series = [client.series("bottleneck", run=RUN, dim=1), client.series("wasserstein2", run=RUN, dim=1)]
+    fig = figures.distances(series)
+    render(fig, tmp_path / "distances.png")
+    lines = artists(fig, "distance")
+    assert len(lines) == 2
+    for line, s in zip(lines, series):
+        keep = np.isfinite(s.value)
+        assert keep.sum() == LAMMPS_FRAMES - 1
+        np.testing.assert_array_equal(line.get_xydata(), np.column_stack([s.rho[keep], s.value[keep]]))
+    (z,) = artists(fig, "z")
+    np.testing.assert_array_equal(z.get_xydata(), np.column_stack([series[0].rho, series[0].z]))
+    assert len(fig.axes) == 2 and fig.axes[1].get_ylabel() == "Z"
+
+
+def test_infinite_distances_are_left_out_of_the_line(client, tmp_path):
+    s = client.series("bottleneck", run=RUN, dim=1, essential="separate")
+    assert s.infinite.any()
+    fig = figures.distances(s)
+    render(fig, tmp_path / "separate.png")
+    (line,) = artists(fig, "distance")
+    keep = np.isfinite(s.value)
+    np.testing.assert_array_equal(line.get_xydata(), np.column_stack([s.rho[keep], s.value[keep]]))
+
+
+def test_store_series_plot_like_served_ones(server, client, tmp_path):
+    with fnet.store.open_store(server.store_path(RUN)) as st:
+        fig = figures.distances(st.series("wasserstein1", 0, "tangential"))
+    render(fig, tmp_path / "stored.png")
+    s = client.series("wasserstein1", run=RUN, dim=0, force="tangential")
+    (line,) = artists(fig, "distance")
+    np.testing.assert_array_equal(line.get_xydata(), np.column_stack([s.rho[1:], s.value[1:]]))
