@@ -59,7 +59,7 @@ for _ in $(seq 300); do
 done
 grep -q "listening on 127.0.0.1:$port " "$report/server.log" 2>/dev/null && kill -0 "$server_pid" 2>/dev/null ||
   fail "fnet-server did not start on 127.0.0.1:$port (see $report/server.log); set PORT to a free port"
-echo "fnet-server: $(grep listening "$report/server.log"), stores in $report/store"
+echo "$(grep listening "$report/server.log"), stores in $report/store"
 
 ensembles=()
 for mu in 0.5 0; do

@@ -91,7 +91,7 @@ def _out(parser):
 
 def build_parser():
     parser = argparse.ArgumentParser(prog="python3 -m fnet", description=__doc__.split("\n\n")[0])
-    commands = parser.add_subparsers(dest="command", required=True, metavar="plot")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="plot|paper-report")
     plot = commands.add_parser("plot", help="draw one of the paper's figures")
     kinds = plot.add_subparsers(dest="kind", required=True, metavar="KIND")
 
@@ -153,7 +153,29 @@ def build_parser():
     _distance_options(p, metric_required=False)
     _out(p)
     parser.kind_parsers = kinds.choices  # for the checks argparse cannot make alone
+
+    p = commands.add_parser("paper-report", help="the paper's Sec. IV from two ensembles: curves.csv, figures, "
+                                                 "report.md (what deploy/reproduce-paper.sh writes)")
+    _endpoint(p)
+    p.add_argument("--ensemble", action="append", required=True, metavar="MU=NAME", type=_mu_ensemble,
+                   help="an ensemble and its friction coefficient, e.g. 0.5=mu05 (repeat: 0.5 and 0)")
+    p.add_argument("--bins", type=_positive_float, default=0.005, help="rho bin width (default 0.005)")
+    p.add_argument("--out", required=True, help="the report folder")
+    p.add_argument("--setting", action="append", default=[], metavar="KEY=VALUE",
+                   help="a line of the report's Setting section (repeatable)")
+    parser.report_parser = p
     return parser
+
+
+def _mu_ensemble(text):
+    mu, sep, name = text.partition("=")
+    try:
+        float(mu)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected MU=NAME with MU a number, got {text!r}") from None
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"expected MU=NAME, got {text!r}")
+    return mu, name
 
 
 def _check(parser, args):
@@ -233,6 +255,16 @@ def _draw(args):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.command == "paper-report":
+        from fnet import paper
+        try:
+            return paper.main(args)
+        except RpcError as e:
+            print(f"python3 -m fnet paper-report: {e.message}", file=sys.stderr)
+            return EXIT_UNKNOWN if e.code in (-32001, -32002, -32006) else EXIT_SERVER
+        except (ConnectionError, OSError) as e:
+            print(f"python3 -m fnet: cannot reach fnet-server at {args.host}:{args.port}: {e}", file=sys.stderr)
+            return EXIT_UNREACHABLE
     _check(parser, args)
     try:
         fig = _draw(args)

@@ -10,6 +10,7 @@ absolute rho values are not ours."""
 import csv
 import math
 import os
+import time
 
 import numpy as np
 
@@ -96,6 +97,14 @@ def _region(c, lo=-math.inf, hi=math.inf):
     rho, mean = np.asarray(c["rho"], dtype=float), np.asarray(c["mean"], dtype=float)
     keep = (rho >= lo) & (rho < hi) & np.isfinite(mean)
     return rho[keep], mean[keep]
+
+
+def _log10(values):
+    """log10 of the positive values, NaN for the others (a distance of 0: no change at all)."""
+    v = np.asarray(values, dtype=float)
+    out = np.full(v.shape, np.nan)
+    np.log10(v, out=out, where=v > 0)
+    return out
 
 
 def _median(values):
@@ -195,8 +204,8 @@ def findings(curves, rho_j, frictional="0.5", frictionless="0"):
             rt, mt = _region(c("tangential", dim, metric))
             common = np.intersect1d(np.round(rn, 12), np.round(rt, 12))
             far = np.array([abs(r - jam) > 2 * NEAR_JAMMING for r in common])
-            ln = np.log10([mn[np.round(rn, 12) == r][0] for r in common])
-            lt = np.log10([mt[np.round(rt, 12) == r][0] for r in common])
+            ln = _log10([mn[np.round(rn, 12) == r][0] for r in common])
+            lt = _log10([mt[np.round(rt, 12) == r][0] for r in common])
             good = far & np.isfinite(ln) & np.isfinite(lt)
             corr = float(np.corrcoef(ln[good], lt[good])[0, 1]) if good.sum() > 2 else math.nan
             ok &= corr > 0.9
@@ -268,7 +277,7 @@ def draw(curves, rho_j, out_dir, frictional="0.5", frictionless="0"):
         save(_log_y(figures.ensemble([curves[(mu, "tangential", dim, m)] for m in METRICS],
                                      labels=[f"{m} PD{dim}" for m in METRICS])),
              f"fig8-tangential-pd{dim}.png", f"Fig. 8: mu {mu}, tangential forces, PD{dim}")
-        if (frictionless, "normal", dim, "bottleneck") in curves:
+        if (frictionless, "normal", dim, "bottleneck") in curves and frictional in rho_j and frictionless in rho_j:
             shifted = []
             for m in (frictional, frictionless):
                 for metric in ("bottleneck", "wasserstein2"):
@@ -356,3 +365,43 @@ def write_report(path, setup, rho_j, found, made, tables, timings):
         lines += ["", "## Timings", ""] + [f"- {k}: {v}" for k, v in timings.items()]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
+
+
+def main(args):
+    """python3 -m fnet paper-report: everything above, into args.out."""
+    from fnet.rpc import Client
+
+    os.makedirs(args.out, exist_ok=True)
+    ensembles = dict(args.ensemble)
+    frictional = next((mu for mu in ensembles if float(mu) > 0), next(iter(ensembles)))
+    frictionless = next((mu for mu in ensembles if float(mu) == 0), None)
+    setup = dict(s.split("=", 1) if "=" in s else (s, "") for s in args.setting)
+    setup.update({f"ensemble mu {mu}": name for mu, name in ensembles.items()})
+    with Client(args.host, args.port) as c:
+        listed = {e["ensemble"]: e for e in c.ensembles()}
+        missing = [name for name in ensembles.values() if name not in listed]
+        if missing:
+            raise KeyError(f"no ensemble {', '.join(missing)} on the server")
+        jam = {mu: listed[name]["rho_j"] for mu, name in ensembles.items()}
+        for mu, name in ensembles.items():
+            setup[f"runs of mu {mu}"] = ", ".join(listed[name]["runs"])
+        t0 = time.perf_counter()
+        curves = collect(c, ensembles, args.bins)
+        timings = {f"ensemble.series, {len(curves)} curves over {sum(len(listed[n]['runs']) for n in ensembles.values())}"
+                   " runs": f"{1e3 * (time.perf_counter() - t0) / len(curves):.2f} ms per curve"}
+        rho_j = {mu: v["mean"] for mu, v in jam.items() if v["mean"] is not None}
+        tables = []
+        if frictional in rho_j:
+            t0 = time.perf_counter()
+            tables = block_tables(c, ensembles[frictional], rho_j[frictional])
+            timings[f"blocks.get, k = 2, {len(tables)} tables"] = \
+                f"{1e3 * (time.perf_counter() - t0) / len(tables):.1f} ms per table"
+    write_csv(os.path.join(args.out, "curves.csv"), curves)
+    found = findings(curves, rho_j, frictional, frictionless or "0")
+    made = draw(curves, rho_j, args.out, frictional, frictionless or "0")
+    write_report(os.path.join(args.out, "report.md"), setup, jam, found, made, tables, timings)
+    for f in found:
+        verdict = "not measurable" if f.holds is None else "holds" if f.holds else "does not hold"
+        print(f"{verdict:>15}: {f.claim}")
+    print(os.path.join(args.out, "report.md"))
+    return 0
