@@ -220,7 +220,7 @@ TEST(BlocksService, ThePlantedCornerIsTheLargestBlockAndAnUnchangedFrameIsZeroAl
   EXPECT_EQ(
       error_code(rpc, "blocks.get", {{"run", "legacy-v1"}, {"frame", 0}, {"other_frame", 1}, {"metric", "bottleneck"}},
                  &data_out, &message),
-      -32006);
+      -32005);
   EXPECT_EQ(data_out["run"], "legacy-v1");
   EXPECT_EQ(data_out["frame"], 0);
   EXPECT_NE(message.find("run legacy-v1 frame 0"), std::string::npos) << message;
