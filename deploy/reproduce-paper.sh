@@ -73,6 +73,16 @@ for mu in 0.5 0; do
     --out "$report/runs/{run}.run.h5" --checkpoint "$report/runs/{run}.fnetsim" --quiet &
   simd_pid=$!
   pids+=("$simd_pid")
+  # fnet-simd prints each realization's start and end; every 30 s, what the server has analyzed.
+  ticks=0
+  while kill -0 "$simd_pid" 2>/dev/null; do
+    sleep 1
+    if (( ++ticks % 30 == 0 )); then
+      analyzed=$("$bin/client/fnetctl" --port "$port" ensembles --format csv 2>/dev/null |
+        awk -F, -v e="$name" '$1 == e { print $3 }')
+      echo "   [$(($(date +%s) - t0)) s] fnet-server: ${analyzed:-0} of $((realizations * frames)) frames of $name analyzed"
+    fi
+  done
   wait "$simd_pid" || fail "fnet-simd ensemble $name failed (logs: $report/runs/*.log)"
   echo "   simulated in $(($(date +%s) - t0)) s"
 done

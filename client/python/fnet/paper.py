@@ -107,6 +107,15 @@ def _log10(values):
     return out
 
 
+def _ratio(a, b):
+    """a / b; +inf for a > 0 over 0 (something from nothing), NaN for 0 / 0 or an undefined side."""
+    if math.isnan(a) or math.isnan(b):
+        return math.nan
+    if b == 0:
+        return math.inf if a > 0 else math.nan
+    return a / b
+
+
 def _median(values):
     return float(np.median(values)) if len(values) else math.nan
 
@@ -180,7 +189,7 @@ def findings(curves, rho_j, frictional="0.5", frictionless="0"):
         for metric, direction in (("bottleneck", "drops"), ("wasserstein1", "rises")):
             _, early = _region(c("normal", dim, metric), hi=early_hi)
             _, late = _region(c("normal", dim, metric), lo=early_hi + (jam - early_hi) / 2, hi=jam)
-            change = _median(late) / _median(early) if len(early) and len(late) else math.nan
+            change = _ratio(_median(late), _median(early))
             parts.append(f"PD{dim} {metric}: last quarter below rho_J / first half = {_fmt(change)}")
             ok.append((f"PD{dim} {metric} {direction}", change < 1 if direction == "drops" else change > 1))
     out.append(Finding(
@@ -194,14 +203,14 @@ def findings(curves, rho_j, frictional="0.5", frictionless="0"):
         for metric in METRICS:
             _, pre = _region(c("normal", dim, metric), hi=jam)
             _, post = _region(c("normal", dim, metric), lo=jam + JAMMED_FROM)
-            drop = _median(pre) / _median(post) if len(pre) and len(post) else math.nan
+            drop = _ratio(_median(pre), _median(post))
             parts.append(f"PD{dim} {metric} drops {_fmt(drop)}x")
             ok.append((f"PD{dim} {metric} drops", drop >= 10))
     for dim in DIMS:
         for label, orders, lo, hi in (("ratio_w2", 1, 0.5, 1.5), ("ratio_w1", 3, 2, 4)):
             _, early = _region(c("normal", dim, label), hi=early_hi)
             _, post = _region(c("normal", dim, label), lo=jam + JAMMED_FROM)
-            fall = math.log10(_median(early) / _median(post)) if len(early) and len(post) else math.nan
+            fall = _log10([_ratio(_median(early), _median(post))])[0]
             parts.append(f"PD{dim} {label.replace('ratio_w', 'd_B/d_W')} falls {_fmt(fall, 2)} orders "
                          f"(paper: {orders}), from {_fmt(_median(early))} to {_fmt(_median(post))}")
             ok.append((f"PD{dim} {label.replace('ratio_w', 'd_B/d_W')} falls", lo <= fall <= hi))
@@ -227,7 +236,7 @@ def findings(curves, rho_j, frictional="0.5", frictionless="0"):
             if metric != "bottleneck":
                 _, near_n = _region(c("normal", dim, metric), lo=jam - NEAR_JAMMING, hi=jam + NEAR_JAMMING)
                 _, near_t = _region(c("tangential", dim, metric), lo=jam - NEAR_JAMMING, hi=jam + NEAR_JAMMING)
-                near = _median(near_t) / _median(near_n) if len(near_n) and len(near_t) else math.nan
+                near = _ratio(_median(near_t), _median(near_n))
                 text += f", tangential/normal within {NEAR_JAMMING} of rho_J {_fmt(near)}"
                 ok.append((f"PD{dim} {metric} smaller near rho_J", near < 1))
             parts.append(text)
@@ -250,7 +259,7 @@ def findings(curves, rho_j, frictional="0.5", frictionless="0"):
                 cm = curves[(m, "normal", 1, metric)]
                 _, post = _region({"rho": np.asarray(cm["rho"]) - rho_j[m], "mean": cm["mean"]}, lo=JAMMED_FROM)
                 speeds.append(_median(post))
-            factor = speeds[1] / speeds[0] if speeds[0] > 0 else math.nan
+            factor = _ratio(speeds[1], speeds[0])
             parts.append(f"PD1 {metric} after jamming, mu {frictionless} / mu {frictional}: {_fmt(factor)}")
             if metric == "wasserstein1":
                 ok.append(("PD1 d_W1 about twice", 1.4 <= factor <= 2.8))
