@@ -5,8 +5,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
-#include <set>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -19,6 +17,7 @@
 #include "common/codec/run_info_json.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/block_methods.hpp"
+#include "server/analysis/connection_subscriptions.hpp"
 #include "server/analysis/ensemble_methods.hpp"
 
 namespace fnet::server {
@@ -237,22 +236,19 @@ json server_status(const ApiContext& ctx) {
 
 // ---- subscriptions: each connection's, released when it closes --------------------------------
 
-class Subscriptions : public std::enable_shared_from_this<Subscriptions> {
+class Subscriptions {
  public:
-  explicit Subscriptions(ApiContext& ctx) : ctx_(ctx) {}
+  explicit Subscriptions(ApiContext& ctx)
+      : ctx_(ctx),
+        held_(std::make_shared<ConnectionSubscriptions>(ctx.registry, ctx.max_subscriptions_per_connection,
+                                                        "subscription")) {}
 
   json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
     const auto since = get_index(params, "since");
     const std::string run = get_string(params, "run").value_or("");
     Registry& registry = ctx_.registry;
     if (!run.empty() && !registry.has_run(run)) unknown_run(run);
-    const std::shared_ptr<Session> mine = of(session);
-    {
-      std::lock_guard lock(mine->mutex);
-      if (mine->ids.size() >= ctx_.max_subscriptions_per_connection)
-        throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx_.max_subscriptions_per_connection) +
-                                                    " subscriptions per connection");
-    }
+    held_->check_room(*session);
     std::weak_ptr<rpc::Session> weak = session;
     const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
       const auto s = weak.lock();
@@ -262,64 +258,19 @@ class Subscriptions : public std::enable_shared_from_this<Subscriptions> {
       return s->send(rpc::notification("series.point", std::move(params_out)));
     });
     if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
-    std::lock_guard lock(mine->mutex);
-    mine->ids.insert(id);
+    held_->add(session, id);
     return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
   }
 
   json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
     const std::uint32_t id = require_index(params, "subscription");
-    std::shared_ptr<Session> mine;
-    {
-      std::lock_guard lock(mutex_);
-      const auto it = sessions_.find(session->id());
-      if (it != sessions_.end()) mine = it->second;
-    }
-    bool found = false;
-    if (mine) {
-      std::lock_guard lock(mine->mutex);
-      found = mine->ids.erase(id) > 0;
-    }
-    if (!found)
-      invalid("subscription",
-              "parameter 'subscription': no subscription " + std::to_string(id) + " on this connection");
-    ctx_.registry.unsubscribe(id);
+    held_->remove(*session, id);
     return {{"unsubscribed", id}};
   }
 
  private:
-  struct Session {
-    std::mutex mutex;
-    std::set<std::uint64_t> ids;
-  };
-
-  // This connection's set, created on its first subscription along with the hook that releases it.
-  std::shared_ptr<Session> of(const std::shared_ptr<rpc::Session>& session) {
-    std::lock_guard lock(mutex_);
-    auto& slot = sessions_[session->id()];
-    if (!slot) {
-      slot = std::make_shared<Session>();
-      session->on_close([self = shared_from_this(), id = session->id()] { self->release(id); });
-    }
-    return slot;
-  }
-
-  void release(std::uint64_t session_id) {
-    std::shared_ptr<Session> subs;
-    {
-      std::lock_guard lock(mutex_);
-      const auto it = sessions_.find(session_id);
-      if (it == sessions_.end()) return;
-      subs = it->second;
-      sessions_.erase(it);
-    }
-    std::lock_guard lock(subs->mutex);
-    for (const std::uint64_t s : subs->ids) ctx_.registry.unsubscribe(s);
-  }
-
   ApiContext& ctx_;
-  std::mutex mutex_;
-  std::map<std::uint64_t, std::shared_ptr<Session>> sessions_;
+  const std::shared_ptr<ConnectionSubscriptions> held_;
 };
 
 // ---- the method table: what each method accepts drives the unknown-parameter check -------------
