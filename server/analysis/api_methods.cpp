@@ -19,6 +19,7 @@
 #include "server/analysis/block_methods.hpp"
 #include "server/analysis/connection_subscriptions.hpp"
 #include "server/analysis/ensemble_methods.hpp"
+#include "server/analysis/series_columns.hpp"
 
 namespace fnet::server {
 namespace {
@@ -97,56 +98,32 @@ json series_get(const Registry& registry, const json& params) {
   const int dim = get_dim(params);
   const ForceKind force = get_force(params);
   const EssentialConvention essential = get_essential(params);
-  const auto from = get_index(params, "from"), to = get_index(params, "to");
-  if (from && to && *from > *to)
-    invalid("from", "parameter 'from' (" + std::to_string(*from) + ") is after 'to' (" + std::to_string(*to) +
-                        "): the range is inclusive, from <= to");
+  const FrameRange range = get_frame_range(params);
   const std::string run = resolve_run(registry, params);
   const auto frames = registry.frames(run);
   if (!frames) unknown_run(run);
 
   json out = describe(metric, dim, force, essential);
   out["run"] = run;
-  json frame = json::array(), step = json::array(), time = json::array(), rho = json::array(), z = json::array(),
-       value = json::array(), previous = json::array();
-  json infinite = json::array();
-  bool any_infinite = false;
+  SeriesColumns columns;
   std::shared_ptr<const AnalyzedFrame> before;  // the frame committed before the current one
   for (const auto& f : *frames) {
-    const std::uint32_t index = f->header.index;
     const auto prev_frame = before;
     before = f;
-    if ((from && index < *from) || (to && index > *to)) continue;
-    frame.push_back(index);
-    step.push_back(f->header.step);
-    time.push_back(f->header.time);
-    rho.push_back(f->header.rho);
-    z.push_back(f->header.z);
-    previous.push_back(f->previous ? json(*f->previous) : json(nullptr));
+    if (!range.contains(f->header.index)) continue;
     if (!f->previous || !prev_frame) {
-      value.push_back(nullptr);
-      infinite.push_back(false);
+      columns.add(*f, nullptr, false);
       continue;
     }
     if (metric.stored && essential == EssentialConvention::floor) {
-      value.push_back(f->distances(*metric.stored, dim, force));
-      infinite.push_back(false);
+      columns.add(*f, f->distances(*metric.stored, dim, force), false);
       continue;
     }
     const DistanceResult r = choice_distance(diagram_of(prev_frame->diagrams, force, dim),
                                              diagram_of(f->diagrams, force, dim), metric, essential);
-    value.push_back(r.infinite ? json(nullptr) : json(r.value));
-    infinite.push_back(r.infinite);
-    any_infinite |= r.infinite;
+    columns.add(*f, r.infinite ? json(nullptr) : json(r.value), r.infinite);
   }
-  out["frame"] = frame;
-  out["step"] = step;
-  out["time"] = time;
-  out["rho"] = rho;
-  out["z"] = z;
-  out["value"] = value;
-  out["previous"] = previous;
-  if (any_infinite) out["infinite"] = infinite;
+  columns.put(out);
   return out;
 }
 

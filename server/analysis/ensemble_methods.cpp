@@ -14,6 +14,7 @@
 #include "common/analysis/step_series.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/connection_subscriptions.hpp"
+#include "server/analysis/series_columns.hpp"
 
 namespace fnet::server {
 namespace {
@@ -460,10 +461,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
 json series_ratio_get(const Registry& registry, const json& params) {
   std::string ratio;
   const auto [numerator, denominator] = get_step_query(params, ratio);
-  const auto from = get_index(params, "from"), to = get_index(params, "to");
-  if (from && to && *from > *to)
-    invalid("from", "parameter 'from' (" + std::to_string(*from) + ") is after 'to' (" + std::to_string(*to) +
-                        "): the range is inclusive, from <= to");
+  const FrameRange range = get_frame_range(params);
   const std::string run = resolve_run(registry, params);
   const auto frames = registry.frames(run);
   if (!frames) unknown_run(run);
@@ -474,31 +472,14 @@ json series_ratio_get(const Registry& registry, const json& params) {
   json out = describe(numerator.metric, numerator.dim, numerator.force, numerator.essential);
   out["ratio"] = ratio;
   out["run"] = run;
-  json frame = json::array(), step = json::array(), time = json::array(), rho = json::array(), z = json::array(),
-       value = json::array(), previous = json::array(), infinite = json::array();
-  bool any_infinite = false;
+  SeriesColumns columns;
   for (std::size_t k = 0; k < frames->size(); ++k) {
     const AnalyzedFrame& f = *(*frames)[k];
-    if ((from && f.header.index < *from) || (to && f.header.index > *to)) continue;
-    frame.push_back(f.header.index);
-    step.push_back(f.header.step);
-    time.push_back(f.header.time);
-    rho.push_back(f.header.rho);
-    z.push_back(f.header.z);
-    previous.push_back(f.previous ? json(*f.previous) : json(nullptr));
+    if (!range.contains(f.header.index)) continue;
     const double v = top[k].value ? *top[k].value / *bottom[k].value : std::numeric_limits<double>::quiet_NaN();
-    value.push_back(std::isfinite(v) ? json(v) : json(nullptr));
-    infinite.push_back(std::isinf(v));
-    any_infinite |= std::isinf(v);
+    columns.add(f, std::isfinite(v) ? json(v) : json(nullptr), std::isinf(v));
   }
-  out["frame"] = frame;
-  out["step"] = step;
-  out["time"] = time;
-  out["rho"] = rho;
-  out["z"] = z;
-  out["value"] = value;
-  out["previous"] = previous;
-  if (any_infinite) out["infinite"] = infinite;
+  columns.put(out);
   return out;
 }
 
