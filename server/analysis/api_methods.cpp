@@ -252,13 +252,6 @@ class Subscriptions {
 
 // ---- the method table: what each method accepts drives the unknown-parameter check -------------
 
-struct Method {
-  std::vector<std::string_view> params;  // every parameter the method accepts; any other is an error
-  std::function<json(const json& params, const std::shared_ptr<rpc::Session>& session)> run;
-};
-
-using MethodTable = std::map<std::string, Method, std::less<>>;
-
 MethodTable method_table(ApiContext& ctx) {
   Registry& registry = ctx.registry;
   const auto subscriptions = std::make_shared<Subscriptions>(ctx);
@@ -292,7 +285,7 @@ MethodTable method_table(ApiContext& ctx) {
         }}},
       {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
   };
-  for (auto& [name, method] : ensemble_methods(ctx)) table.emplace(name, Method{method.params, method.run});
+  table.merge(ensemble_methods(ctx));
   return table;
 }
 

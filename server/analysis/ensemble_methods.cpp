@@ -483,7 +483,7 @@ json series_ratio_get(const Registry& registry, const json& params) {
   return out;
 }
 
-std::map<std::string, EnsembleMethod, std::less<>> ensemble_methods(ApiContext& ctx) {
+MethodTable ensemble_methods(ApiContext& ctx) {
   Registry& registry = ctx.registry;
   const auto subscriptions = EnsembleSubscriptions::make(ctx);
   const std::vector<std::string_view> curve_params{"ensemble",  "run",       "metric", "q",    "dim",  "force",
