@@ -373,6 +373,67 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   EXPECT_EQ(server.process->stop(), 0);
 }
 
+// Each connection holds at most --max-subscriptions of each kind (series, ensemble); an id is
+// ended only by the connection and the kind of unsubscribe that made it, and a connection that
+// closes ends all of its own (proto/api.md, series.subscribe and ensemble.subscribe).
+TEST(Service, SubscriptionsAreEachConnectionsOwnUpToTheLimitOfEachKind) {
+  testing::TempDir tmp;
+  const fs::path data = tmp.path() / "data";
+  ASSERT_EQ(store_run(lammps_run(tmp.path() / "csv", {0, 1, 2}), "demo", data, tmp.path() / "store.log", "demo-ens"),
+            0);
+  ServerProcess server =
+      start_server(data, 58, tmp.path() / "server.log", {"--threads", "2", "--max-subscriptions", "2"});
+  const json curve = {{"ensemble", "demo-ens"}, {"metric", "bottleneck"}};
+  const auto error_of = [](const json& reply, int code, const std::string& message) {
+    SCOPED_TRACE(reply.dump());
+    ASSERT_TRUE(reply.contains("error"));
+    EXPECT_EQ(reply["error"]["code"], code);
+    EXPECT_EQ(reply["error"]["message"], message);
+    if (code == -32602) {
+      EXPECT_EQ(reply["error"]["data"]["parameter"], "subscription");
+    }
+  };
+  const auto not_here = [](const std::string& kind, std::uint64_t id) {
+    return "parameter 'subscription': no " + kind + " " + std::to_string(id) + " on this connection";
+  };
+  LineConnection other(server.port);
+  {
+    LineConnection mine(server.port);
+    std::vector<std::uint64_t> series, curves;
+    for (int k = 0; k < 2; ++k) {
+      series.push_back(mine.call("series.subscribe", {{"since", 2}})["result"]["subscription"].get<std::uint64_t>());
+      curves.push_back(mine.call("ensemble.subscribe", curve)["result"]["subscription"].get<std::uint64_t>());
+    }
+    error_of(mine.call("series.subscribe", {{"since", 2}}), -32003, "at most 2 subscriptions per connection");
+    error_of(mine.call("ensemble.subscribe", curve), -32003, "at most 2 ensemble subscriptions per connection");
+    EXPECT_TRUE(other.call("series.subscribe", {{"since", 2}})["result"].contains("subscription"))
+        << "another connection has room of its own";
+
+    error_of(other.call("series.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("subscription", series[0]));
+    error_of(mine.call("series.unsubscribe", {{"subscription", curves[0]}}), -32602,
+             not_here("subscription", curves[0]));
+    error_of(mine.call("ensemble.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("ensemble subscription", series[0]));
+    EXPECT_EQ(mine.call("series.unsubscribe", {{"subscription", series[0]}})["result"]["unsubscribed"], series[0]);
+    EXPECT_EQ(mine.call("ensemble.unsubscribe", {{"subscription", curves[0]}})["result"]["unsubscribed"], curves[0]);
+    error_of(mine.call("series.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("subscription", series[0]));
+    EXPECT_TRUE(mine.call("series.subscribe", {{"since", 2}})["result"].contains("subscription"))
+        << "an unsubscribe makes room";
+    EXPECT_EQ(other.call("server.status", json::object())["result"]["subscriptions"], 4);
+  }
+  // The closed connection's three end with it; the other connection's one stays.
+  json subscriptions;
+  for (int k = 0; k < 100; ++k) {
+    subscriptions = other.call("server.status", json::object())["result"]["subscriptions"];
+    if (subscriptions == 1) break;
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_EQ(subscriptions, 1);
+  EXPECT_EQ(server.process->stop(), 0);
+}
+
 TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   testing::TempDir tmp;
   const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3, 4});
