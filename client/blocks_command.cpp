@@ -58,18 +58,13 @@ int blocks_command(const Endpoint& at, const std::vector<std::string>& args) {
       "Cuts both frames' force networks into a k x k grid over each frame's domain (the bounding box\n"
       "of its grains) and prints the distance between the diagrams of each cell (blocks.get; a\n"
       "contact belongs to the cell holding its contact point).\n\noptions");
-  std::string run, force = "normal", essential = "floor", metric, format = "table";
-  long long dim = 0, frame = 0, other = 0, k = 2;
-  double q = 0;
-  o.add_options()("help,h", "show this help")("run", po::value(&run), "run id (default: the newest run)")(
-      "frame", po::value(&frame)->required(), "first frame")("other-frame", po::value(&other)->required(),
-                                                             "second frame")("k", po::value(&k)->default_value(2),
-                                                                             "blocks per side: 1 to 16")(
-      "metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2 or wasserstein (with --q)")(
-      "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
-      "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
-      "force", po::value(&force)->default_value("normal"), "normal or tangential force network")(
-      "essential", po::value(&essential)->default_value("floor"), "never-dying classes: floor, sentinel or separate")(
+  SeriesOptions c;
+  c.add(o, true);
+  std::string format = "table";
+  long long frame = 0, other = 0, k = 2;
+  o.add_options()("frame", po::value(&frame)->required(), "first frame")(
+      "other-frame", po::value(&other)->required(), "second frame")("k", po::value(&k)->default_value(2),
+                                                                    "blocks per side: 1 to 16")(
       "format", po::value(&format)->default_value("table"),
       "table, csv (one row per cell, exact numbers) or json (the API's answer)");
   po::variables_map vm;
@@ -78,16 +73,10 @@ int blocks_command(const Endpoint& at, const std::vector<std::string>& args) {
   if (k < kMinBlocks || k > kMaxBlocks)
     throw po::error("--k must be an integer from " + std::to_string(kMinBlocks) + " to " + std::to_string(kMaxBlocks) +
                     ", got " + std::to_string(k));
-  const MetricChoice choice = metric_option(metric, vm.count("q") ? std::optional(q) : std::nullopt);
-  json p = {{"frame", frame_option("--frame", frame)},
-            {"other_frame", frame_option("--other-frame", other)},
-            {"k", k},
-            {"metric", choice.name},
-            {"dim", dim_option(dim)},
-            {"force", to_string(force_option(force))},
-            {"essential", to_string(essential_option(essential))}};
-  if (vm.count("q")) p["q"] = q;
-  if (!run.empty()) p["run"] = run;
+  json p = c.checked(vm);
+  p["frame"] = frame_option("--frame", frame);
+  p["other_frame"] = frame_option("--other-frame", other);
+  p["k"] = k;
   RpcClient rpc(at.host, at.port);
   const json r = rpc.call("blocks.get", p);
   if (format == "json")

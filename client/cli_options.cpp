@@ -105,4 +105,29 @@ void format_option(const std::string& format, std::initializer_list<const char*>
   throw po::error("--format: unknown format '" + format + "' (expected " + names + ")");
 }
 
+void SeriesOptions::add(po::options_description& o, bool with_metric, bool metric_required) {
+  o.add_options()("help,h", "show this help")("run", po::value(&run), "run id (default: the newest run)")(
+      "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
+      "force", po::value(&force)->default_value("normal"), "normal or tangential force network");
+  if (with_metric) {
+    auto* value = po::value(&metric);
+    if (metric_required) value->required();
+    o.add_options()("metric", value, "bottleneck, wasserstein1, wasserstein2 or wasserstein (with --q)")(
+        "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
+        "essential", po::value(&essential)->default_value("floor"), "never-dying classes: floor, sentinel or separate");
+  }
+}
+
+nlohmann::json SeriesOptions::checked(const po::variables_map& vm) const {
+  nlohmann::json p = {{"dim", dim_option(dim)}, {"force", to_string(force_option(force))}};
+  if (!run.empty()) p["run"] = run;
+  if (vm.count("metric")) {
+    const MetricChoice choice = metric_option(metric, vm.count("q") ? std::optional(q) : std::nullopt);
+    p["metric"] = choice.name;
+    if (vm.count("q")) p["q"] = q;
+  }
+  if (vm.count("essential")) p["essential"] = to_string(essential_option(essential));
+  return p;
+}
+
 }  // namespace fnet::client

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
 
 #include "common/analysis/metric_vocabulary.hpp"
 #include "common/distance/essential_convention.hpp"
@@ -40,5 +41,19 @@ ForceKind force_option(const std::string& name);
 EssentialConvention essential_option(const std::string& name);
 std::uint32_t frame_option(const char* flag, long long value);
 void format_option(const std::string& format, std::initializer_list<const char*> allowed);
+
+// The options that select a diagram series (--run, --dim, --force and, with a metric, --metric,
+// --q, --essential), as typed; checked() turns them into API parameters or throws a usage error
+// naming the flag. Every command that reads one series or frame pair takes them.
+struct SeriesOptions {
+  std::string run, force = "normal", essential = "floor", metric;
+  long long dim = 0;
+  double q = 0;
+
+  // Adds --help too. `metric_required` false: the command checks --metric itself (query: --ratio
+  // stands in for it).
+  void add(boost::program_options::options_description& o, bool with_metric, bool metric_required = true);
+  nlohmann::json checked(const boost::program_options::variables_map& vm) const;
+};
 
 }  // namespace fnet::client

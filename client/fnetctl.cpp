@@ -77,40 +77,6 @@ std::string number(const json& v, int significant) {
   return v.is_null() ? "-" : rounded_number(v.get<double>(), significant);
 }
 
-// The options that select a diagram series, as typed; checked() turns them into API parameters
-// or throws a usage error naming the flag.
-struct SeriesOptions {
-  std::string run, force = "normal", essential = "floor", metric;
-  long long dim = 0;
-  double q = 0;
-
-  // `metric_required` false: the command checks --metric itself (query: --ratio stands in for it).
-  void add(po::options_description& o, bool with_metric, bool metric_required = true) {
-    o.add_options()("help,h", "show this help")("run", po::value(&run), "run id (default: the newest run)")(
-        "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
-        "force", po::value(&force)->default_value("normal"), "normal or tangential force network");
-    if (with_metric) {
-      auto* value = po::value(&metric);
-      if (metric_required) value->required();
-      o.add_options()("metric", value, "bottleneck, wasserstein1, wasserstein2 or wasserstein (with --q)")(
-          "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
-          "essential", po::value(&essential)->default_value("floor"),
-          "never-dying classes: floor, sentinel or separate");
-    }
-  }
-  json checked(const po::variables_map& vm) const {
-    json p = {{"dim", dim_option(dim)}, {"force", to_string(force_option(force))}};
-    if (!run.empty()) p["run"] = run;
-    if (vm.count("metric")) {
-      const MetricChoice choice = metric_option(metric, vm.count("q") ? std::optional(q) : std::nullopt);
-      p["metric"] = choice.name;
-      if (vm.count("q")) p["q"] = q;
-    }
-    if (vm.count("essential")) p["essential"] = to_string(essential_option(essential));
-    return p;
-  }
-};
-
 double idle_seconds(const json& run) { return run.at("seconds_since_last_frame").get<double>(); }
 
 // The order of `fnetctl runs`: least recently active first, newest activity last, by the

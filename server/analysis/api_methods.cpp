@@ -5,8 +5,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
-#include <set>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -19,7 +17,9 @@
 #include "common/codec/run_info_json.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/block_methods.hpp"
+#include "server/analysis/connection_subscriptions.hpp"
 #include "server/analysis/ensemble_methods.hpp"
+#include "server/analysis/series_columns.hpp"
 
 namespace fnet::server {
 namespace {
@@ -98,56 +98,32 @@ json series_get(const Registry& registry, const json& params) {
   const int dim = get_dim(params);
   const ForceKind force = get_force(params);
   const EssentialConvention essential = get_essential(params);
-  const auto from = get_index(params, "from"), to = get_index(params, "to");
-  if (from && to && *from > *to)
-    invalid("from", "parameter 'from' (" + std::to_string(*from) + ") is after 'to' (" + std::to_string(*to) +
-                        "): the range is inclusive, from <= to");
+  const FrameRange range = get_frame_range(params);
   const std::string run = resolve_run(registry, params);
   const auto frames = registry.frames(run);
   if (!frames) unknown_run(run);
 
   json out = describe(metric, dim, force, essential);
   out["run"] = run;
-  json frame = json::array(), step = json::array(), time = json::array(), rho = json::array(), z = json::array(),
-       value = json::array(), previous = json::array();
-  json infinite = json::array();
-  bool any_infinite = false;
+  SeriesColumns columns;
   std::shared_ptr<const AnalyzedFrame> before;  // the frame committed before the current one
   for (const auto& f : *frames) {
-    const std::uint32_t index = f->header.index;
     const auto prev_frame = before;
     before = f;
-    if ((from && index < *from) || (to && index > *to)) continue;
-    frame.push_back(index);
-    step.push_back(f->header.step);
-    time.push_back(f->header.time);
-    rho.push_back(f->header.rho);
-    z.push_back(f->header.z);
-    previous.push_back(f->previous ? json(*f->previous) : json(nullptr));
+    if (!range.contains(f->header.index)) continue;
     if (!f->previous || !prev_frame) {
-      value.push_back(nullptr);
-      infinite.push_back(false);
+      columns.add(*f, nullptr, false);
       continue;
     }
     if (metric.stored && essential == EssentialConvention::floor) {
-      value.push_back(f->distances(*metric.stored, dim, force));
-      infinite.push_back(false);
+      columns.add(*f, f->distances(*metric.stored, dim, force), false);
       continue;
     }
     const DistanceResult r = choice_distance(diagram_of(prev_frame->diagrams, force, dim),
                                              diagram_of(f->diagrams, force, dim), metric, essential);
-    value.push_back(r.infinite ? json(nullptr) : json(r.value));
-    infinite.push_back(r.infinite);
-    any_infinite |= r.infinite;
+    columns.add(*f, r.infinite ? json(nullptr) : json(r.value), r.infinite);
   }
-  out["frame"] = frame;
-  out["step"] = step;
-  out["time"] = time;
-  out["rho"] = rho;
-  out["z"] = z;
-  out["value"] = value;
-  out["previous"] = previous;
-  if (any_infinite) out["infinite"] = infinite;
+  columns.put(out);
   return out;
 }
 
@@ -237,22 +213,19 @@ json server_status(const ApiContext& ctx) {
 
 // ---- subscriptions: each connection's, released when it closes --------------------------------
 
-class Subscriptions : public std::enable_shared_from_this<Subscriptions> {
+class Subscriptions {
  public:
-  explicit Subscriptions(ApiContext& ctx) : ctx_(ctx) {}
+  explicit Subscriptions(ApiContext& ctx)
+      : ctx_(ctx),
+        held_(std::make_shared<ConnectionSubscriptions>(ctx.registry, ctx.max_subscriptions_per_connection,
+                                                        "subscription")) {}
 
   json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
     const auto since = get_index(params, "since");
     const std::string run = get_string(params, "run").value_or("");
     Registry& registry = ctx_.registry;
     if (!run.empty() && !registry.has_run(run)) unknown_run(run);
-    const std::shared_ptr<Session> mine = of(session);
-    {
-      std::lock_guard lock(mine->mutex);
-      if (mine->ids.size() >= ctx_.max_subscriptions_per_connection)
-        throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx_.max_subscriptions_per_connection) +
-                                                    " subscriptions per connection");
-    }
+    held_->check_room(*session);
     std::weak_ptr<rpc::Session> weak = session;
     const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
       const auto s = weak.lock();
@@ -262,74 +235,22 @@ class Subscriptions : public std::enable_shared_from_this<Subscriptions> {
       return s->send(rpc::notification("series.point", std::move(params_out)));
     });
     if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
-    std::lock_guard lock(mine->mutex);
-    mine->ids.insert(id);
+    held_->add(session, id);
     return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
   }
 
   json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
     const std::uint32_t id = require_index(params, "subscription");
-    std::shared_ptr<Session> mine;
-    {
-      std::lock_guard lock(mutex_);
-      const auto it = sessions_.find(session->id());
-      if (it != sessions_.end()) mine = it->second;
-    }
-    bool found = false;
-    if (mine) {
-      std::lock_guard lock(mine->mutex);
-      found = mine->ids.erase(id) > 0;
-    }
-    if (!found)
-      invalid("subscription",
-              "parameter 'subscription': no subscription " + std::to_string(id) + " on this connection");
-    ctx_.registry.unsubscribe(id);
+    held_->remove(*session, id);
     return {{"unsubscribed", id}};
   }
 
  private:
-  struct Session {
-    std::mutex mutex;
-    std::set<std::uint64_t> ids;
-  };
-
-  // This connection's set, created on its first subscription along with the hook that releases it.
-  std::shared_ptr<Session> of(const std::shared_ptr<rpc::Session>& session) {
-    std::lock_guard lock(mutex_);
-    auto& slot = sessions_[session->id()];
-    if (!slot) {
-      slot = std::make_shared<Session>();
-      session->on_close([self = shared_from_this(), id = session->id()] { self->release(id); });
-    }
-    return slot;
-  }
-
-  void release(std::uint64_t session_id) {
-    std::shared_ptr<Session> subs;
-    {
-      std::lock_guard lock(mutex_);
-      const auto it = sessions_.find(session_id);
-      if (it == sessions_.end()) return;
-      subs = it->second;
-      sessions_.erase(it);
-    }
-    std::lock_guard lock(subs->mutex);
-    for (const std::uint64_t s : subs->ids) ctx_.registry.unsubscribe(s);
-  }
-
   ApiContext& ctx_;
-  std::mutex mutex_;
-  std::map<std::uint64_t, std::shared_ptr<Session>> sessions_;
+  const std::shared_ptr<ConnectionSubscriptions> held_;
 };
 
 // ---- the method table: what each method accepts drives the unknown-parameter check -------------
-
-struct Method {
-  std::vector<std::string_view> params;  // every parameter the method accepts; any other is an error
-  std::function<json(const json& params, const std::shared_ptr<rpc::Session>& session)> run;
-};
-
-using MethodTable = std::map<std::string, Method, std::less<>>;
 
 MethodTable method_table(ApiContext& ctx) {
   Registry& registry = ctx.registry;
@@ -364,7 +285,7 @@ MethodTable method_table(ApiContext& ctx) {
         }}},
       {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
   };
-  for (auto& [name, method] : ensemble_methods(ctx)) table.emplace(name, Method{method.params, method.run});
+  table.merge(ensemble_methods(ctx));
   return table;
 }
 

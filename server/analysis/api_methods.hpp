@@ -3,7 +3,11 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
+#include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "server/analysis/rpc_server.hpp"
 #include "server/analysis/run_registry.hpp"
@@ -18,6 +22,14 @@ struct ApiContext {
   // "running", or "stopped: <reason>" when the DDS ingest ended on an error.
   std::function<std::string()> ingest_state = [] { return std::string("not started"); };
 };
+
+// One method: every parameter it accepts (any other is an error, before it runs) and what it does.
+struct Method {
+  std::vector<std::string_view> params;
+  std::function<nlohmann::json(const nlohmann::json& params, const std::shared_ptr<rpc::Session>& session)> run;
+};
+
+using MethodTable = std::map<std::string, Method, std::less<>>;
 
 rpc::Handler make_api(ApiContext& context);
 

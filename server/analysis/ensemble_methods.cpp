@@ -13,6 +13,8 @@
 #include "common/analysis/jamming.hpp"
 #include "common/analysis/step_series.hpp"
 #include "server/analysis/api_params.hpp"
+#include "server/analysis/connection_subscriptions.hpp"
+#include "server/analysis/series_columns.hpp"
 
 namespace fnet::server {
 namespace {
@@ -303,6 +305,16 @@ bool same_bin(const CurveBin& a, const CurveBin& b) {
 // (commits only mark the subscription), and sends the bins that changed.
 class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscriptions> {
  public:
+  // The connections' sets end a subscription through a weak pointer: they may outlive this.
+  static std::shared_ptr<EnsembleSubscriptions> make(ApiContext& ctx) {
+    auto self = std::make_shared<EnsembleSubscriptions>(ctx);
+    self->held_ = std::make_shared<ConnectionSubscriptions>(
+        ctx.registry, ctx.max_subscriptions_per_connection, "ensemble subscription",
+        [weak = std::weak_ptr<EnsembleSubscriptions>(self)](std::uint64_t id) {
+          if (const auto s = weak.lock()) s->forget(id);
+        });
+    return self;
+  }
   explicit EnsembleSubscriptions(ApiContext& ctx) : ctx_(ctx) {}
   ~EnsembleSubscriptions() {
     {
@@ -318,12 +330,9 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     auto sub = std::make_shared<Subscription>();
     sub->request = get_curve_request(registry, params);
     sub->session = session;
+    held_->check_room(*session);
     {
       std::lock_guard lock(mutex_);
-      const auto& mine = sessions_[session->id()];
-      if (mine.size() >= ctx_.max_subscriptions_per_connection)
-        throw Error(rpc::kTooManySubscriptions, "at most " + std::to_string(ctx_.max_subscriptions_per_connection) +
-                                                    " ensemble subscriptions per connection");
       if (!worker_.joinable()) worker_ = std::thread([this] { work(); });
     }
     // Registered before the curve is first computed, and the worker waits for that computation
@@ -343,18 +352,14 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     {
       std::lock_guard lock(mutex_);
       subscriptions_[id] = sub;
-      sessions_[session->id()].insert(id);
-      if (hooked_.insert(session->id()).second)
-        session->on_close([weak_self, sid = session->id()] {
-          if (const auto self = weak_self.lock()) self->release(sid);
-        });
     }
+    held_->add(session, id);
     Curve c;
     try {
       c = compute_curve(registry, sub->request, sub->cache);
     } catch (...) {
       sub_lock.unlock();
-      release_one(session->id(), id);
+      held_->drop(*session, id);
       throw;
     }
     sub->sent = c.bins;
@@ -365,17 +370,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
 
   json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
     const std::uint32_t id = require_index(params, "subscription");
-    bool found = false;
-    {
-      std::lock_guard lock(mutex_);
-      const auto it = sessions_.find(session->id());
-      found = it != sessions_.end() && it->second.erase(id) > 0;
-      if (found) subscriptions_.erase(id);
-    }
-    if (!found)
-      invalid("subscription",
-              "parameter 'subscription': no ensemble subscription " + std::to_string(id) + " on this connection");
-    ctx_.registry.unsubscribe(id);
+    held_->remove(*session, id);
     return {{"unsubscribed", id}};
   }
 
@@ -389,6 +384,11 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     std::vector<CurveBin> sent;  // the bins as the subscriber has them
   };
 
+  void forget(std::uint64_t id) {
+    std::lock_guard lock(mutex_);
+    subscriptions_.erase(id);
+  }
+
   // Under the registry's lock: only queues the id (once until it is served).
   void mark(std::uint64_t id) {
     {
@@ -397,29 +397,6 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
       queue_.push_back(id);
     }
     wake_.notify_one();
-  }
-
-  void release_one(std::uint64_t session_id, std::uint64_t id) {
-    {
-      std::lock_guard lock(mutex_);
-      sessions_[session_id].erase(id);
-      subscriptions_.erase(id);
-    }
-    ctx_.registry.unsubscribe(id);
-  }
-
-  void release(std::uint64_t session_id) {
-    std::set<std::uint64_t> ids;
-    {
-      std::lock_guard lock(mutex_);
-      hooked_.erase(session_id);
-      const auto it = sessions_.find(session_id);
-      if (it == sessions_.end()) return;
-      ids = std::move(it->second);
-      sessions_.erase(it);
-      for (const std::uint64_t id : ids) subscriptions_.erase(id);
-    }
-    for (const std::uint64_t id : ids) ctx_.registry.unsubscribe(id);
   }
 
   void work() {
@@ -469,10 +446,9 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
   }
 
   ApiContext& ctx_;
+  std::shared_ptr<ConnectionSubscriptions> held_;
   std::mutex mutex_;  // guards what follows
   std::map<std::uint64_t, std::shared_ptr<Subscription>> subscriptions_;
-  std::map<std::uint64_t, std::set<std::uint64_t>> sessions_;  // connection -> its subscriptions
-  std::set<std::uint64_t> hooked_;                             // connections whose close releases theirs
   std::deque<std::uint64_t> queue_;
   std::set<std::uint64_t> queued_;
   std::condition_variable wake_;
@@ -485,10 +461,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
 json series_ratio_get(const Registry& registry, const json& params) {
   std::string ratio;
   const auto [numerator, denominator] = get_step_query(params, ratio);
-  const auto from = get_index(params, "from"), to = get_index(params, "to");
-  if (from && to && *from > *to)
-    invalid("from", "parameter 'from' (" + std::to_string(*from) + ") is after 'to' (" + std::to_string(*to) +
-                        "): the range is inclusive, from <= to");
+  const FrameRange range = get_frame_range(params);
   const std::string run = resolve_run(registry, params);
   const auto frames = registry.frames(run);
   if (!frames) unknown_run(run);
@@ -499,37 +472,20 @@ json series_ratio_get(const Registry& registry, const json& params) {
   json out = describe(numerator.metric, numerator.dim, numerator.force, numerator.essential);
   out["ratio"] = ratio;
   out["run"] = run;
-  json frame = json::array(), step = json::array(), time = json::array(), rho = json::array(), z = json::array(),
-       value = json::array(), previous = json::array(), infinite = json::array();
-  bool any_infinite = false;
+  SeriesColumns columns;
   for (std::size_t k = 0; k < frames->size(); ++k) {
     const AnalyzedFrame& f = *(*frames)[k];
-    if ((from && f.header.index < *from) || (to && f.header.index > *to)) continue;
-    frame.push_back(f.header.index);
-    step.push_back(f.header.step);
-    time.push_back(f.header.time);
-    rho.push_back(f.header.rho);
-    z.push_back(f.header.z);
-    previous.push_back(f.previous ? json(*f.previous) : json(nullptr));
+    if (!range.contains(f.header.index)) continue;
     const double v = top[k].value ? *top[k].value / *bottom[k].value : std::numeric_limits<double>::quiet_NaN();
-    value.push_back(std::isfinite(v) ? json(v) : json(nullptr));
-    infinite.push_back(std::isinf(v));
-    any_infinite |= std::isinf(v);
+    columns.add(f, std::isfinite(v) ? json(v) : json(nullptr), std::isinf(v));
   }
-  out["frame"] = frame;
-  out["step"] = step;
-  out["time"] = time;
-  out["rho"] = rho;
-  out["z"] = z;
-  out["value"] = value;
-  out["previous"] = previous;
-  if (any_infinite) out["infinite"] = infinite;
+  columns.put(out);
   return out;
 }
 
-std::map<std::string, EnsembleMethod, std::less<>> ensemble_methods(ApiContext& ctx) {
+MethodTable ensemble_methods(ApiContext& ctx) {
   Registry& registry = ctx.registry;
-  const auto subscriptions = std::make_shared<EnsembleSubscriptions>(ctx);
+  const auto subscriptions = EnsembleSubscriptions::make(ctx);
   const std::vector<std::string_view> curve_params{"ensemble",  "run",       "metric", "q",    "dim",  "force",
                                                    "essential", "bin_width", "bins",   "axis", "ratio"};
   return {

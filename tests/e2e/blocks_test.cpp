@@ -7,9 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <regex>
 #include <sstream>
-#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +15,7 @@
 #include "common/analysis/explain.hpp"
 #include "common/codec/explain_json.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/e2e/service_process.hpp"
 #include "tests/support/lammps_frames.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -84,37 +83,6 @@ fs::path write_run(const fs::path& dir, const PlantedRun& run) {
   return dir;
 }
 
-struct Server {
-  std::unique_ptr<Process> process;
-  unsigned short port = 0;
-};
-
-Server start_server(const fs::path& data_dir, const fs::path& log, int domain = kDomain) {
-  Server s;
-  s.process = std::make_unique<Process>(FNET_SERVER,
-                                        std::vector<std::string>{"--data-dir", data_dir.string(), "--port", "0",
-                                                                 "--domain", std::to_string(domain), "--threads", "2"},
-                                        log, dds_environment());
-  const auto line = s.process->read_line(30s);
-  if (!line) throw std::runtime_error("fnet-server did not start; see " + log.string());
-  std::smatch m;
-  if (!std::regex_search(*line, m, std::regex(":(\\d+) "))) throw std::runtime_error("no port in: " + *line);
-  s.port = static_cast<unsigned short>(std::stoi(m[1]));
-  return s;
-}
-
-void wait_for_frames(unsigned short port, const std::string& run, std::size_t frames) {
-  RpcClient rpc("127.0.0.1", port);
-  const auto deadline = std::chrono::steady_clock::now() + 120s;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const json listed = rpc.call("runs.list");
-    for (const json& r : listed["runs"])
-      if (r["run"] == run && r["frames"].get<std::size_t>() >= frames && r["pending"] == 0) return;
-    std::this_thread::sleep_for(100ms);
-  }
-  throw std::runtime_error("run " + run + " did not reach " + std::to_string(frames) + " frames");
-}
-
 json blocks(RpcClient& rpc, std::uint32_t frame, std::uint32_t other, const std::string& metric, int dim) {
   return rpc.call("blocks.get", {{"run", "planted"},
                                  {"frame", frame},
@@ -156,12 +124,9 @@ TEST(BlocksService, ThePlantedCornerIsTheLargestBlockAndAnUnchangedFrameIsZeroAl
 
   std::map<std::string, json> answers;
   {
-    Server server = start_server(data, tmp.path() / "server.log");
-    Process pub(FNET_ANALYZE,
-                {"publish", "--csv-dir", csv.string(), "--run-id", "planted", "--domain", std::to_string(kDomain),
-                 "--wait-for-reader", "30"},
-                tmp.path() / "publish.log", dds_environment());
-    ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+    ServerProcess server = start_server(data, kDomain, tmp.path() / "server.log");
+    auto pub = publish(csv, "planted", kDomain, tmp.path() / "publish.log");
+    ASSERT_EQ(pub->wait(120s), 0) << "see " << tmp.path() / "publish.log";
     wait_for_frames(server.port, "planted", 3);
     RpcClient rpc("127.0.0.1", server.port);
     for (const std::string metric : {"bottleneck", "wasserstein2"})
@@ -209,7 +174,7 @@ TEST(BlocksService, ThePlantedCornerIsTheLargestBlockAndAnUnchangedFrameIsZeroAl
   }
   // A store of the first schema (written before networks were kept) next to the run's.
   fs::copy_file(fs::path(FNET_TEST_DATA) / "store-v1" / "legacy-v1.h5", data / "legacy-v1.h5");
-  Server again = start_server(data, tmp.path() / "server2.log");
+  ServerProcess again = start_server(data, kDomain, tmp.path() / "server2.log");
   RpcClient rpc("127.0.0.1", again.port);
   for (const std::string metric : {"bottleneck", "wasserstein2"})
     for (const int dim : {0, 1})
@@ -227,33 +192,13 @@ TEST(BlocksService, ThePlantedCornerIsTheLargestBlockAndAnUnchangedFrameIsZeroAl
   EXPECT_NE(message.find("fnet-store-1"), std::string::npos) << message;
 }
 
-struct CliResult {
-  int code;
-  std::string out;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-CliResult fnetctl(const fs::path& log, unsigned short port, std::vector<std::string> args) {
-  args.insert(args.begin(), {"--port", std::to_string(port)});
-  Process p(FNETCTL, args, log);
-  const auto code = p.wait(60s);
-  return {code.value_or(-1), p.read_rest()};
-}
-
 TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   testing::TempDir tmp;
   const PlantedRun run = plant(testing::lammps_frame(10));
   const fs::path csv = write_run(tmp.path() / "csv", run);
-  Server server = start_server(tmp.path() / "data", tmp.path() / "server.log", 84);
-  Process pub(
-      FNET_ANALYZE,
-      {"publish", "--csv-dir", csv.string(), "--run-id", "planted", "--domain", "84", "--wait-for-reader", "30"},
-      tmp.path() / "publish.log", dds_environment());
-  ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+  ServerProcess server = start_server(tmp.path() / "data", 84, tmp.path() / "server.log");
+  auto pub = publish(csv, "planted", 84, tmp.path() / "publish.log");
+  ASSERT_EQ(pub->wait(120s), 0) << "see " << tmp.path() / "publish.log";
   wait_for_frames(server.port, "planted", 3);
   const fs::path log = tmp.path() / "fnetctl.log";
   const std::vector<std::string> ask{"blocks", "--run",    "planted",      "--frame", "0", "--other-frame",
@@ -261,15 +206,15 @@ TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   const auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> a = ask;
     a.insert(a.end(), extra.begin(), extra.end());
-    return fnetctl(log, server.port, a);
+    return run_fnetctl(server.port, a, log);
   };
-  const CliResult as_json = with({"--format", "json"});
+  const Outcome as_json = with({"--format", "json"});
   ASSERT_EQ(as_json.code, 0) << as_json.out;
   const json answer = json::parse(as_json.out);
   EXPECT_EQ(answer["largest"]["row"], 1);
   EXPECT_EQ(answer["largest"]["col"], 0);
   // CSV: one row per cell, the values exactly the API's.
-  const CliResult as_csv = with({"--format", "csv"});
+  const Outcome as_csv = with({"--format", "csv"});
   ASSERT_EQ(as_csv.code, 0);
   std::istringstream lines(as_csv.out);
   std::string line;
@@ -285,7 +230,7 @@ TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   }
   EXPECT_EQ(rows, 4u);
   // The table marks the largest cell.
-  const CliResult table = with({});
+  const Outcome table = with({});
   ASSERT_EQ(table.code, 0);
   std::size_t marked = 0;
   for (std::istringstream t(table.out); std::getline(t, line);)
@@ -296,16 +241,17 @@ TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   EXPECT_EQ(marked, 1u) << table.out;
   // Usage errors exit 2 before asking the server; an unknown frame is exit 4.
   for (const char* k : {"0", "17"}) {
-    const CliResult bad =
-        fnetctl(log, server.port, {"blocks", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", k});
+    const Outcome bad = run_fnetctl(
+        server.port, {"blocks", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", k}, log);
     EXPECT_EQ(bad.code, 2) << k;
   }
   EXPECT_NE(read_file(log).find("--k must be an integer from 1 to 16, got 17"), std::string::npos) << read_file(log);
   EXPECT_EQ(with({"--format", "xml"}).code, 2);
-  EXPECT_EQ(fnetctl(log, server.port,
-                    {"blocks", "--run", "planted", "--frame", "0", "--other-frame", "7", "--metric", "bottleneck"})
-                .code,
-            4);
+  EXPECT_EQ(
+      run_fnetctl(server.port,
+                  {"blocks", "--run", "planted", "--frame", "0", "--other-frame", "7", "--metric", "bottleneck"}, log)
+          .code,
+      4);
 }
 
 // distance.get with explain: k reads both networks back from the store and names the grains of
@@ -318,12 +264,9 @@ TEST(ExplainService, TheTermsAreTheLibrarysAndTheBottleneckTermLiesInThePlantedC
   const fs::path data = tmp.path() / "data";
   fs::create_directories(data);
   fs::copy_file(fs::path(FNET_TEST_DATA) / "store-v1" / "legacy-v1.h5", data / "legacy-v1.h5");
-  Server server = start_server(data, tmp.path() / "server.log", 86);
-  Process pub(
-      FNET_ANALYZE,
-      {"publish", "--csv-dir", csv.string(), "--run-id", "planted", "--domain", "86", "--wait-for-reader", "30"},
-      tmp.path() / "publish.log", dds_environment());
-  ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+  ServerProcess server = start_server(data, 86, tmp.path() / "server.log");
+  auto pub = publish(csv, "planted", 86, tmp.path() / "publish.log");
+  ASSERT_EQ(pub->wait(120s), 0) << "see " << tmp.path() / "publish.log";
   wait_for_frames(server.port, "planted", 3);
   RpcClient rpc("127.0.0.1", server.port);
   const BlockDomain d = block_domain(run.planted);
@@ -387,10 +330,10 @@ TEST(ExplainService, TheTermsAreTheLibrarysAndTheBottleneckTermLiesInThePlantedC
                                       "2"};
   std::vector<std::string> as_json = args;
   as_json.insert(as_json.end(), {"--format", "json"});
-  const CliResult j = fnetctl(log, server.port, as_json);
+  const Outcome j = run_fnetctl(server.port, as_json, log);
   ASSERT_EQ(j.code, 0) << read_file(log);
   EXPECT_EQ(without_time(json::parse(j.out)), without_time(ask(0, 1, "bottleneck", 1, 2)));
-  const CliResult table = fnetctl(log, server.port, args);
+  const Outcome table = run_fnetctl(server.port, args, log);
   ASSERT_EQ(table.code, 0) << read_file(log);
   std::size_t rows = 0;
   bool header = false;
@@ -401,14 +344,15 @@ TEST(ExplainService, TheTermsAreTheLibrarysAndTheBottleneckTermLiesInThePlantedC
   }
   EXPECT_TRUE(header) << table.out;
   EXPECT_EQ(rows, std::min<std::size_t>(2, ask(0, 1, "bottleneck", 1, 2)["explain"].size())) << table.out;
-  EXPECT_EQ(
-      fnetctl(log, server.port, {"explain", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", "0"})
-          .code,
-      2);
-  EXPECT_EQ(fnetctl(log, server.port,
-                    {"explain", "--run", "planted", "--frame", "0", "--other-frame", "9", "--metric", "bottleneck"})
+  EXPECT_EQ(run_fnetctl(server.port,
+                        {"explain", "--frame", "0", "--other-frame", "1", "--metric", "bottleneck", "--k", "0"}, log)
                 .code,
-            4);
+            2);
+  EXPECT_EQ(
+      run_fnetctl(server.port,
+                  {"explain", "--run", "planted", "--frame", "0", "--other-frame", "9", "--metric", "bottleneck"}, log)
+          .code,
+      4);
 }
 
 }  // namespace

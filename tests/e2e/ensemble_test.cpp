@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -16,6 +14,7 @@
 #include "client/rpc_client.hpp"
 #include "tests/e2e/line_connection.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
@@ -26,36 +25,6 @@ using client::json;
 using client::RpcClient;
 using namespace std::chrono_literals;
 
-const fs::path kLammps = fs::path(FNET_TEST_DATA) / "lammps-mu0.5-seed777";
-
-// A CSV run folder of LAMMPS frames `source`, renumbered 0, 1, ...
-fs::path lammps_run(const fs::path& dir, const std::vector<int>& source) {
-  fs::create_directories(dir);
-  std::ifstream in(kLammps / "index.csv");
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> rows;
-  while (std::getline(in, line)) rows.push_back(line);
-  std::ofstream index(dir / "index.csv");
-  index << "frame,step,rho,Z\n";
-  for (std::size_t k = 0; k < source.size(); ++k) {
-    for (const char* what : {"particles", "contacts"}) {
-      char from[64], to[64];
-      std::snprintf(from, sizeof from, "frame_%04d_%s.csv", source[k], what);
-      std::snprintf(to, sizeof to, "frame_%04zu_%s.csv", k, what);
-      fs::copy_file(kLammps / from, dir / to);
-    }
-    const std::string& row = rows.at(source[k]);
-    index << k << row.substr(row.find(',')) << "\n";
-  }
-  return dir;
-}
-
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
-
 class Ensemble : public ::testing::Test {
  public:
   ~Ensemble() override {
@@ -65,70 +34,32 @@ class Ensemble : public ::testing::Test {
   // Analyzes LAMMPS frames `source` offline into the data directory as run `run` of `ensemble`.
   void store(const std::string& run, const std::vector<int>& source, const std::string& ensemble) {
     const fs::path csv = lammps_run(tmp_.path() / ("csv-" + run), source);
-    std::vector<std::string> args{"store", "--csv-dir", csv.string(), "--run-id", run, "--data-dir", data().string()};
-    if (!ensemble.empty()) args.insert(args.end(), {"--ensemble", ensemble});
-    Process p(FNET_ANALYZE, args, tmp_.path() / ("store-" + run + ".log"));
-    ASSERT_EQ(p.wait(300s), 0) << "see " << tmp_.path() / ("store-" + run + ".log");
+    ASSERT_EQ(store_run(csv, run, data(), tmp_.path() / ("store-" + run + ".log"), ensemble), 0)
+        << "see " << tmp_.path() / ("store-" + run + ".log");
   }
 
   // Streams LAMMPS frames `source` over DDS as run `run` of `ensemble`, `rate` frames a second.
   std::unique_ptr<Process> publish(const std::string& run, const std::vector<int>& source, const std::string& ensemble,
                                    double rate) {
     const fs::path csv = lammps_run(tmp_.path() / ("pub-" + run), source);
-    return std::make_unique<Process>(
-        FNET_ANALYZE,
-        std::vector<std::string>{"publish", "--csv-dir", csv.string(), "--run-id", run, "--ensemble", ensemble,
-                                 "--domain", std::to_string(domain_), "--rate", std::to_string(rate),
-                                 "--wait-for-reader", "30"},
-        tmp_.path() / ("publish-" + run + ".log"), dds_environment());
+    return e2e::publish(csv, run, domain_, tmp_.path() / ("publish-" + run + ".log"), rate, 0, 30, ensemble);
   }
 
   void start_server(int domain) {
     domain_ = domain;
-    server_ = std::make_unique<Process>(FNET_SERVER,
-                                        std::vector<std::string>{"--data-dir", data().string(), "--port", "0",
-                                                                 "--domain", std::to_string(domain), "--threads", "2"},
-                                        tmp_.path() / "server.log", dds_environment());
-    const auto line = server_->read_line(30s);
-    ASSERT_TRUE(line) << "fnet-server did not start; see " << tmp_.path() / "server.log";
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) "))) << *line;
-    port_ = static_cast<unsigned short>(std::stoi(m[1]));
+    ServerProcess s = e2e::start_server(data(), domain, tmp_.path() / "server.log");
+    server_ = std::move(s.process);
+    port_ = s.port;
   }
 
   json call(const std::string& method, const json& params = json::object()) {
     return RpcClient("127.0.0.1", port_).call(method, params);
   }
 
-  void wait_for_frames(const std::string& run, std::size_t frames) {
-    RpcClient rpc("127.0.0.1", port_);
-    for (int k = 0; k < 3000; ++k) {
-      const json listed = rpc.call("runs.list");
-      for (const json& r : listed["runs"])
-        if (r["run"] == run && r["frames"].get<std::size_t>() >= frames && r["pending"] == 0) return;
-      std::this_thread::sleep_for(100ms);
-    }
-    FAIL() << "run " << run << " never reached " << frames << " frames";
-  }
+  void wait_for_frames(const std::string& run, std::size_t frames) { e2e::wait_for_frames(port_, run, frames, 300s); }
 
   Outcome ctl(std::vector<std::string> args) {
-    args.insert(args.begin(), {"--port", std::to_string(port_)});
-    const fs::path err = tmp_.path() / ("fnetctl-" + std::to_string(++runs_) + ".err");
-    Process p(FNETCTL, args, err);
-    Outcome o;
-    const auto deadline = std::chrono::steady_clock::now() + 120s;
-    while (!p.wait(0ms)) {
-      if (const auto line = p.read_line(100ms)) o.out += *line + "\n";
-      if (std::chrono::steady_clock::now() > deadline) {
-        p.stop();
-        ADD_FAILURE() << "fnetctl hung";
-      }
-    }
-    o.out += p.read_rest();
-    o.code = p.wait(0ms).value_or(-1);
-    std::ifstream in(err);
-    o.err.assign(std::istreambuf_iterator<char>(in), {});
-    return o;
+    return run_fnetctl(port_, std::move(args), tmp_.path() / ("fnetctl-" + std::to_string(++runs_) + ".err"));
   }
 
   // Three realizations of ensemble "ens" (ens-c never jams: LAMMPS frames 0-5 keep Z below 3),

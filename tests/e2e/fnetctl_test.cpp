@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <numeric>
 #include <regex>
 #include <sstream>
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 
 #include "client/rpc_client.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
@@ -29,29 +31,12 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using namespace std::chrono_literals;
 
-const fs::path kLammps = fs::path(FNET_TEST_DATA) / "lammps-mu0.5-seed777";
-
-// The first `frames` LAMMPS frames as a run folder (its index header is the reference data's
-// `frame,step,rho,Z`).
+// The first `frames` LAMMPS frames as a run folder.
 fs::path first_frames(const fs::path& dir, int frames) {
-  fs::create_directories(dir);
-  std::ifstream in(kLammps / "index.csv");
-  std::ofstream index(dir / "index.csv");
-  std::string line;
-  for (int k = 0; k <= frames && std::getline(in, line); ++k) index << line << "\n";
-  for (int k = 0; k < frames; ++k)
-    for (const char* what : {"particles", "contacts"}) {
-      char name[64];
-      std::snprintf(name, sizeof name, "frame_%04d_%s.csv", k, what);
-      fs::copy_file(kLammps / name, dir / name);
-    }
-  return dir;
+  std::vector<int> source(static_cast<std::size_t>(frames));
+  std::iota(source.begin(), source.end(), 0);
+  return lammps_run(dir, source);
 }
-
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
 
 // One scratch directory, one DDS domain and (once started) one fnet-server per test.
 class Fnetctl : public ::testing::Test {
@@ -63,75 +48,37 @@ class Fnetctl : public ::testing::Test {
   // Analyzes the first `frames` LAMMPS frames offline into the data directory as run `run`.
   void store_run(const std::string& run, int frames) {
     const fs::path csv = first_frames(tmp_.path() / ("csv-" + run), frames);
-    Process p(FNET_ANALYZE, {"store", "--csv-dir", csv.string(), "--run-id", run, "--data-dir", data_dir().string()},
-              tmp_.path() / "store.log");
-    ASSERT_EQ(p.wait(300s), 0) << "fnet-analyze store failed; see " << tmp_.path() / "store.log";
+    ASSERT_EQ(e2e::store_run(csv, run, data_dir(), tmp_.path() / "store.log"), 0)
+        << "fnet-analyze store failed; see " << tmp_.path() / "store.log";
   }
 
   // Starts fnet-server on an ephemeral port; it loads the stores already in the data directory.
   void start_server(int domain) {
     domain_ = domain;
-    server_ = std::make_unique<Process>(
-        FNET_SERVER,
-        std::vector<std::string>{"--data-dir", data_dir().string(), "--port", "0", "--domain", std::to_string(domain)},
-        tmp_.path() / "server.log", dds_environment());
-    const auto line = server_->read_line(30s);
-    ASSERT_TRUE(line) << "fnet-server did not start; see " << tmp_.path() / "server.log";
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(*line, m, std::regex(":(\\d+) "))) << *line;
-    port_ = std::stoi(m[1]);
+    ServerProcess s = e2e::start_server(data_dir(), domain, tmp_.path() / "server.log", {});
+    server_ = std::move(s.process);
+    port_ = s.port;
   }
 
   // Streams the first `frames` LAMMPS frames as run `run` onto the server's DDS domain.
   std::unique_ptr<Process> publish(const std::string& run, int frames, double rate = 0) {
     const fs::path csv = first_frames(tmp_.path() / ("pub-" + run), frames);
-    return std::make_unique<Process>(
-        FNET_ANALYZE,
-        std::vector<std::string>{"publish", "--csv-dir", csv.string(), "--run-id", run, "--domain",
-                                 std::to_string(domain_), "--rate", std::to_string(rate), "--wait-for-reader", "30"},
-        tmp_.path() / ("publish-" + run + ".log"), dds_environment());
+    return e2e::publish(csv, run, domain_, tmp_.path() / ("publish-" + run + ".log"), rate);
   }
 
   // Runs fnetctl to its end with `args` after the server's --port.
   Outcome ctl(std::vector<std::string> args, const std::map<std::string, std::string>& env = {}) {
-    args.insert(args.begin(), {"--port", std::to_string(port_)});
-    return run(FNETCTL, args, env);
+    return run_fnetctl(static_cast<unsigned short>(port_), std::move(args), next_stderr(), env);
   }
 
   Outcome run(const std::string& program, const std::vector<std::string>& args,
               const std::map<std::string, std::string>& env = {}) {
-    const fs::path err = tmp_.path() / ("stderr-" + std::to_string(++runs_));
-    Process p(program, args, err, env);
-    Outcome o;
-    // Read as it comes (a full pipe would stall the child) and stop a child that hangs.
-    const auto deadline = std::chrono::steady_clock::now() + 120s;
-    while (!p.wait(0ms)) {
-      if (const auto line = p.read_line(100ms))
-        o.out += *line + "\n";
-      else
-        std::this_thread::sleep_for(10ms);
-      if (std::chrono::steady_clock::now() > deadline) {
-        p.stop();
-        ADD_FAILURE() << program << " hung: " << ::testing::PrintToString(args);
-      }
-    }
-    o.out += p.read_rest();
-    o.code = p.wait(0ms).value_or(-1);
-    std::ifstream in(err);
-    o.err.assign(std::istreambuf_iterator<char>(in), {});
-    return o;
+    return run_to_end(program, args, next_stderr(), env);
   }
 
   // Waits until the server has committed `frames` frames of `run`.
   void wait_for_frames(const std::string& run, std::size_t frames) {
-    RpcClient rpc("127.0.0.1", static_cast<unsigned short>(port_));
-    for (int k = 0; k < 3000; ++k) {
-      const json listed = rpc.call("runs.list");
-      for (const json& r : listed["runs"])
-        if (r["run"] == run && r["frames"].get<std::size_t>() >= frames && r["pending"] == 0) return;
-      std::this_thread::sleep_for(100ms);
-    }
-    FAIL() << "run " << run << " never reached " << frames << " frames";
+    e2e::wait_for_frames(static_cast<unsigned short>(port_), run, frames, 300s);
   }
 
   json call(const std::string& method, const json& params = json::object()) {
@@ -143,6 +90,8 @@ class Fnetctl : public ::testing::Test {
   int port() const { return port_; }
 
  private:
+  fs::path next_stderr() { return tmp_.path() / ("stderr-" + std::to_string(++runs_)); }
+
   testing::TempDir tmp_;
   std::unique_ptr<Process> server_;
   int domain_ = 0, port_ = 0, runs_ = 0;

@@ -20,6 +20,7 @@
 #include "common/store/analysis_store.hpp"
 #include "tests/e2e/line_connection.hpp"
 #include "tests/e2e/process.hpp"
+#include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
@@ -30,100 +31,9 @@ using client::json;
 using client::RpcClient;
 using namespace std::chrono_literals;
 
-const fs::path kLammps = fs::path(FNET_TEST_DATA) / "lammps-mu0.5-seed777";
-
-// A run folder holding LAMMPS frames `source` renumbered 0, 1, ...; `edit` may rewrite a frame's
-// contact rows (to plant bad input).
-fs::path make_run(const fs::path& dir, const std::string& name, const std::vector<int>& source,
-                  const std::function<void(int, std::vector<std::string>&)>& edit = {}) {
-  const fs::path out = dir / name;
-  fs::create_directories(out);
-  std::ifstream index_in(kLammps / "index.csv");
-  std::vector<std::string> index_rows;
-  std::string line;
-  std::getline(index_in, line);
-  while (std::getline(index_in, line)) index_rows.push_back(line);
-  std::ofstream index(out / "index.csv");
-  index << "frame,step,rho,Z\n";
-  for (std::size_t k = 0; k < source.size(); ++k) {
-    char from[32], to[32];
-    std::snprintf(from, sizeof from, "frame_%04d", source[k]);
-    std::snprintf(to, sizeof to, "frame_%04zu", k);
-    fs::copy_file(kLammps / (std::string(from) + "_particles.csv"), out / (std::string(to) + "_particles.csv"));
-    std::ifstream contacts_in(kLammps / (std::string(from) + "_contacts.csv"));
-    std::vector<std::string> rows;
-    while (std::getline(contacts_in, line)) rows.push_back(line);
-    if (edit) edit(static_cast<int>(k), rows);
-    std::ofstream contacts(out / (std::string(to) + "_contacts.csv"));
-    for (const std::string& r : rows) contacts << r << "\n";
-    const std::string row = index_rows.at(source[k]);
-    index << k << row.substr(row.find(',')) << "\n";
-  }
-  return out;
-}
-
-struct Server {
-  std::unique_ptr<Process> process;
-  unsigned short port = 0;
-};
-
-Server start_server(const fs::path& data_dir, int domain, const fs::path& log, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"--data-dir", data_dir.string(),      "--port",    "0",
-                                "--domain",   std::to_string(domain), "--threads", "2"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  Server s;
-  s.process = std::make_unique<Process>(FNET_SERVER, args, log, dds_environment());
-  const auto line = s.process->read_line(30s);
-  if (!line) throw std::runtime_error("fnet-server did not start; see " + log.string());
-  std::smatch m;
-  if (!std::regex_search(*line, m, std::regex(":(\\d+) "))) throw std::runtime_error("no port in: " + *line);
-  s.port = static_cast<unsigned short>(std::stoi(m[1]));
-  return s;
-}
-
-std::unique_ptr<Process> publish(const fs::path& run_dir, const std::string& run_id, int domain, const fs::path& log,
-                                 double rate = 0, double linger = 0, double wait_for_reader = 30,
-                                 const std::string& ensemble = "") {
-  std::vector<std::string> args{"publish",
-                                "--csv-dir",
-                                run_dir.string(),
-                                "--run-id",
-                                run_id,
-                                "--domain",
-                                std::to_string(domain),
-                                "--rate",
-                                std::to_string(rate),
-                                "--linger",
-                                std::to_string(linger),
-                                "--wait-for-reader",
-                                std::to_string(wait_for_reader)};
-  if (!ensemble.empty()) args.insert(args.end(), {"--ensemble", ensemble});
-  return std::make_unique<Process>(FNET_ANALYZE, args, log, dds_environment());
-}
-
-// Polls runs.list until `run` has `frames` committed and nothing pending.
-json wait_for_frames(unsigned short port, const std::string& run, std::size_t frames,
-                     std::chrono::seconds limit = 120s) {
-  RpcClient rpc("127.0.0.1", port);
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  json last;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const json listed = rpc.call("runs.list");  // iterating a temporary's member would dangle
-    for (const json& r : listed["runs"])
-      if (r["run"] == run) {
-        last = r;
-        if (r["frames"].get<std::size_t>() + r["rejected"].get<std::size_t>() >= frames && r["pending"] == 0) return r;
-      }
-    std::this_thread::sleep_for(100ms);
-  }
-  throw std::runtime_error("run " + run + " did not reach " + std::to_string(frames) + " frames: " + last.dump());
-}
-
 StoredRun offline_store(const fs::path& run_dir, const std::string& run_id, const fs::path& data_dir,
                         const fs::path& log) {
-  Process p(FNET_ANALYZE, {"store", "--csv-dir", run_dir.string(), "--run-id", run_id, "--data-dir", data_dir.string()},
-            log);
-  EXPECT_EQ(p.wait(300s), 0) << "fnet-analyze store failed; see " << log;
+  EXPECT_EQ(store_run(run_dir, run_id, data_dir, log), 0) << "fnet-analyze store failed; see " << log;
   return read_store(store_path(data_dir, run_id));
 }
 
@@ -156,8 +66,8 @@ void expect_series_match(unsigned short port, const std::string& run, const Stor
 // frames 6, 7, 8 have Z = 1.576, 2.812, 3.473: the crossing lies between the last two.
 TEST(Service, RunsReportTheirJammingPoint) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {6, 7, 8});
-  Server server = start_server(tmp.path() / "data", 56, tmp.path() / "server.log");
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {6, 7, 8});
+  ServerProcess server = start_server(tmp.path() / "data", 56, tmp.path() / "server.log");
   auto pub = publish(run_dir, "jam", 56, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   wait_for_frames(server.port, "jam", 3);
@@ -177,8 +87,8 @@ TEST(Service, RunsReportTheirJammingPoint) {
 
 TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4, 5});
-  Server server = start_server(tmp.path() / "data", 31, tmp.path() / "server.log");
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3, 4, 5});
+  ServerProcess server = start_server(tmp.path() / "data", 31, tmp.path() / "server.log");
   auto pub = publish(run_dir, "live", 31, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   wait_for_frames(server.port, "live", 6);
@@ -220,7 +130,7 @@ TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
 
 TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3});
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3});
   auto pub = publish(run_dir, "early", 32, tmp.path() / "publish.log", 0, 60, 0);
   // The publisher has written everything (no reader exists yet) before the server starts.
   const auto reported = [&] {
@@ -228,7 +138,7 @@ TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
   };
   for (int k = 0; k < 300 && !reported(); ++k) std::this_thread::sleep_for(50ms);
   ASSERT_TRUE(reported()) << "publisher never reported";
-  Server server = start_server(tmp.path() / "data", 32, tmp.path() / "server.log");
+  ServerProcess server = start_server(tmp.path() / "data", 32, tmp.path() / "server.log");
   const json run = wait_for_frames(server.port, "early", 4);
   EXPECT_EQ(run["frames"], 4);
   EXPECT_EQ(run["announced"], true);
@@ -237,10 +147,10 @@ TEST(Service, ServerStartedAfterTheRunStillGetsEveryFrame) {
 
 TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4, 5});
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3, 4, 5});
   auto pub = publish(run_dir, "crash", 33, tmp.path() / "publish.log", 3, 120);
   {
-    Server first = start_server(tmp.path() / "data", 33, tmp.path() / "server1.log");
+    ServerProcess first = start_server(tmp.path() / "data", 33, tmp.path() / "server1.log");
     RpcClient rpc("127.0.0.1", first.port);
     int stored_at_kill = 0;
     for (int k = 0; k < 600 && stored_at_kill < 2; ++k) {  // kill it mid-run, once some frames are stored
@@ -253,7 +163,7 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
     ASSERT_GE(stored_at_kill, 2);
     EXPECT_LT(stored_at_kill, 6) << "the kill came after the whole run: the restart recovers nothing";
   }
-  Server second = start_server(tmp.path() / "data", 33, tmp.path() / "server2.log");
+  ServerProcess second = start_server(tmp.path() / "data", 33, tmp.path() / "server2.log");
   const json run = wait_for_frames(second.port, "crash", 6);
   EXPECT_EQ(run["frames"], 6);
   EXPECT_EQ(run["rejected"], 0);
@@ -269,7 +179,7 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
 
 TEST(Service, RunsKeepTheirLastActivityAndTheNewestRunAcrossRestarts) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1});
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1});
   const fs::path data = tmp.path() / "data";
   // Name order is the reverse of activity order, so that neither can pass for the other.
   const StoredRun older = offline_store(run_dir, "b-older", data, tmp.path() / "store1.log");
@@ -280,7 +190,7 @@ TEST(Service, RunsKeepTheirLastActivityAndTheNewestRunAcrossRestarts) {
   std::this_thread::sleep_for(1500ms);
   for (int restart = 0; restart < 2; ++restart) {  // the second start reads the stores the first rewrote
     SCOPED_TRACE(restart);
-    Server server = start_server(data, 39, tmp.path() / ("server" + std::to_string(restart) + ".log"));
+    ServerProcess server = start_server(data, 39, tmp.path() / ("server" + std::to_string(restart) + ".log"));
     RpcClient rpc("127.0.0.1", server.port);
     const json listed = rpc.call("runs.list");
     ASSERT_EQ(listed["runs"].size(), 2u);
@@ -297,11 +207,11 @@ TEST(Service, RunsKeepTheirLastActivityAndTheNewestRunAcrossRestarts) {
 
 TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4}, [](int k, std::vector<std::string>& rows) {
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3, 4}, [](int k, std::vector<std::string>& rows) {
     if (k == 1) rows[5] = "10,11,nan,0.5";      // a NaN force
     if (k == 3) rows[7] = "10,999999,1.0,0.5";  // an index out of range
   });
-  Server server = start_server(tmp.path() / "data", 34, tmp.path() / "server.log");
+  ServerProcess server = start_server(tmp.path() / "data", 34, tmp.path() / "server.log");
   auto pub = publish(run_dir, "bad", 34, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   const json run = wait_for_frames(server.port, "bad", 5);
@@ -322,7 +232,7 @@ TEST(Service, BadFramesAreRejectedReportedAndTheRunGoesOn) {
 
 TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3});
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3});
   // Published as 0, 2, 1, 3, 2: frame 2 arrives before 1, and twice.
   {
     std::ifstream in(run_dir / "index.csv");
@@ -336,7 +246,7 @@ TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
         << rows[4] << "\n"
         << rows[3] << "\n";
   }
-  Server server = start_server(tmp.path() / "data", 38, tmp.path() / "server.log");
+  ServerProcess server = start_server(tmp.path() / "data", 38, tmp.path() / "server.log");
   auto pub = publish(run_dir, "shuffled", 38, tmp.path() / "publish.log");
   EXPECT_EQ(pub->wait(120s), 0);
   const json run = wait_for_frames(server.port, "shuffled", 4);
@@ -347,16 +257,16 @@ TEST(Service, OutOfOrderAndDuplicateFramesAreOrderedAndCountedOnce) {
   EXPECT_EQ(series["frame"], json({0, 1, 2, 3}));
   EXPECT_EQ(series["previous"],
             json({nullptr, 0, 1, 2}));  // distances between consecutive frames, whatever the arrival order
-  const StoredRun offline = offline_store(make_run(tmp.path(), "ordered", {0, 1, 2, 3}), "shuffled",
+  const StoredRun offline = offline_store(lammps_run(tmp.path() / "ordered", {0, 1, 2, 3}), "shuffled",
                                           tmp.path() / "offline", tmp.path() / "store.log");
   expect_series_match(server.port, "shuffled", offline);
 }
 
 TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
   testing::TempDir tmp;
-  const fs::path a = make_run(tmp.path(), "a", {0, 1, 2, 3});
-  const fs::path b = make_run(tmp.path(), "b", {5, 4, 3, 2});
-  Server server = start_server(tmp.path() / "data", 35, tmp.path() / "server.log");
+  const fs::path a = lammps_run(tmp.path() / "a", {0, 1, 2, 3});
+  const fs::path b = lammps_run(tmp.path() / "b", {5, 4, 3, 2});
+  ServerProcess server = start_server(tmp.path() / "data", 35, tmp.path() / "server.log");
   auto pa = publish(a, "run-a", 35, tmp.path() / "pa.log", 20);
   auto pb = publish(b, "run-b", 35, tmp.path() / "pb.log", 20);
   EXPECT_EQ(pa->wait(120s), 0);
@@ -379,9 +289,9 @@ TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
 
 TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   testing::TempDir tmp;
-  Server server =
-      start_server(tmp.path() / "data", 36, tmp.path() / "server.log",
-                   {"--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
+  ServerProcess server = start_server(
+      tmp.path() / "data", 36, tmp.path() / "server.log",
+      {"--threads", "2", "--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
   const auto raw = [&](const std::string& text) {
     boost::asio::io_context io;
     boost::asio::ip::tcp::socket s(io);
@@ -463,10 +373,71 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   EXPECT_EQ(server.process->stop(), 0);
 }
 
+// Each connection holds at most --max-subscriptions of each kind (series, ensemble); an id is
+// ended only by the connection and the kind of unsubscribe that made it, and a connection that
+// closes ends all of its own (proto/api.md, series.subscribe and ensemble.subscribe).
+TEST(Service, SubscriptionsAreEachConnectionsOwnUpToTheLimitOfEachKind) {
+  testing::TempDir tmp;
+  const fs::path data = tmp.path() / "data";
+  ASSERT_EQ(store_run(lammps_run(tmp.path() / "csv", {0, 1, 2}), "demo", data, tmp.path() / "store.log", "demo-ens"),
+            0);
+  ServerProcess server =
+      start_server(data, 58, tmp.path() / "server.log", {"--threads", "2", "--max-subscriptions", "2"});
+  const json curve = {{"ensemble", "demo-ens"}, {"metric", "bottleneck"}};
+  const auto error_of = [](const json& reply, int code, const std::string& message) {
+    SCOPED_TRACE(reply.dump());
+    ASSERT_TRUE(reply.contains("error"));
+    EXPECT_EQ(reply["error"]["code"], code);
+    EXPECT_EQ(reply["error"]["message"], message);
+    if (code == -32602) {
+      EXPECT_EQ(reply["error"]["data"]["parameter"], "subscription");
+    }
+  };
+  const auto not_here = [](const std::string& kind, std::uint64_t id) {
+    return "parameter 'subscription': no " + kind + " " + std::to_string(id) + " on this connection";
+  };
+  LineConnection other(server.port);
+  {
+    LineConnection mine(server.port);
+    std::vector<std::uint64_t> series, curves;
+    for (int k = 0; k < 2; ++k) {
+      series.push_back(mine.call("series.subscribe", {{"since", 2}})["result"]["subscription"].get<std::uint64_t>());
+      curves.push_back(mine.call("ensemble.subscribe", curve)["result"]["subscription"].get<std::uint64_t>());
+    }
+    error_of(mine.call("series.subscribe", {{"since", 2}}), -32003, "at most 2 subscriptions per connection");
+    error_of(mine.call("ensemble.subscribe", curve), -32003, "at most 2 ensemble subscriptions per connection");
+    EXPECT_TRUE(other.call("series.subscribe", {{"since", 2}})["result"].contains("subscription"))
+        << "another connection has room of its own";
+
+    error_of(other.call("series.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("subscription", series[0]));
+    error_of(mine.call("series.unsubscribe", {{"subscription", curves[0]}}), -32602,
+             not_here("subscription", curves[0]));
+    error_of(mine.call("ensemble.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("ensemble subscription", series[0]));
+    EXPECT_EQ(mine.call("series.unsubscribe", {{"subscription", series[0]}})["result"]["unsubscribed"], series[0]);
+    EXPECT_EQ(mine.call("ensemble.unsubscribe", {{"subscription", curves[0]}})["result"]["unsubscribed"], curves[0]);
+    error_of(mine.call("series.unsubscribe", {{"subscription", series[0]}}), -32602,
+             not_here("subscription", series[0]));
+    EXPECT_TRUE(mine.call("series.subscribe", {{"since", 2}})["result"].contains("subscription"))
+        << "an unsubscribe makes room";
+    EXPECT_EQ(other.call("server.status", json::object())["result"]["subscriptions"], 4);
+  }
+  // The closed connection's three end with it; the other connection's one stays.
+  json subscriptions;
+  for (int k = 0; k < 100; ++k) {
+    subscriptions = other.call("server.status", json::object())["result"]["subscriptions"];
+    if (subscriptions == 1) break;
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_EQ(subscriptions, 1);
+  EXPECT_EQ(server.process->stop(), 0);
+}
+
 TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   testing::TempDir tmp;
-  const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2, 3, 4});
-  Server server = start_server(tmp.path() / "data", 37, tmp.path() / "server.log");
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2, 3, 4});
+  ServerProcess server = start_server(tmp.path() / "data", 37, tmp.path() / "server.log");
   RpcClient watcher("127.0.0.1", server.port);
   std::vector<std::uint32_t> seen;
   auto pub = publish(run_dir, "live", 37, tmp.path() / "publish.log", 4);
@@ -497,11 +468,6 @@ TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   pub->stop();
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(Service, BrokenDdsConfigurationFailsAtStartNamingIt) {
   testing::TempDir tmp;
   const fs::path broken = tmp.path() / "broken.xml";
@@ -523,7 +489,7 @@ TEST(Service, BrokenDdsConfigurationFailsAtStartNamingIt) {
 
 TEST(Service, StatusReportsTheIngestStateAndNoDeadCounters) {
   testing::TempDir tmp;
-  Server server = start_server(tmp.path() / "data", 52, tmp.path() / "server.log");
+  ServerProcess server = start_server(tmp.path() / "data", 52, tmp.path() / "server.log");
   RpcClient rpc("127.0.0.1", server.port);
   const json status = rpc.call("server.status");
   EXPECT_EQ(status["ingest"], "running");
@@ -559,9 +525,9 @@ TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
 // A three-frame run "demo" of ensemble "demo-ens", served: what proto/api.md's examples are written against.
 struct DemoRun {
   testing::TempDir tmp;
-  Server server;
+  ServerProcess server;
   explicit DemoRun(int domain) {
-    const fs::path run_dir = make_run(tmp.path(), "csv", {0, 1, 2});
+    const fs::path run_dir = lammps_run(tmp.path() / "csv", {0, 1, 2});
     server = start_server(tmp.path() / "data", domain, tmp.path() / "server.log");
     auto pub = publish(run_dir, "demo", domain, tmp.path() / "publish.log", 0, 0, 30, "demo-ens");
     EXPECT_EQ(pub->wait(120s), 0);

@@ -42,19 +42,17 @@ def _open(path):
     return h5py.File(path, "r", libver="latest", swmr=True)
 
 
-class Store:
-    """An analysis store (schema fnet-store-1 or fnet-store-2), opened read-only in SWMR mode."""
+class _SwmrFile:
+    """An HDF5 file of fnet opened read-only in SWMR mode, its schema one of `schemas` (else
+    ValueError naming the file and the schemas); a context manager that closes it."""
 
-    def __init__(self, path):
+    def __init__(self, path, schemas):
         self.path = str(path)
         self.file = _open(self.path)
-        schema = _text(self.file.attrs.get("schema", ""))
-        if schema not in STORE_SCHEMAS:
+        self.schema = _text(self.file.attrs.get("schema", ""))
+        if self.schema not in schemas:
             self.file.close()
-            raise ValueError(f"{self.path}: schema {schema!r}, expected one of {', '.join(STORE_SCHEMAS)}")
-        self.schema = schema
-        self.run_id = _text(self.file.attrs["run_id"])
-        self.refresh()
+            raise ValueError(f"{self.path}: schema {self.schema!r}, expected one of {', '.join(schemas)}")
 
     def __enter__(self):
         return self
@@ -64,6 +62,15 @@ class Store:
 
     def close(self):
         self.file.close()
+
+
+class Store(_SwmrFile):
+    """An analysis store (schema fnet-store-1 or fnet-store-2), opened read-only in SWMR mode."""
+
+    def __init__(self, path):
+        super().__init__(path, STORE_SCHEMAS)
+        self.run_id = _text(self.file.attrs["run_id"])
+        self.refresh()
 
     def refresh(self):
         """Reads the frames committed so far: `frame` first, then every column up to its length."""
@@ -183,34 +190,20 @@ class Frame(Result):
         return np.abs(self.contact_forces[:, FORCES.index(force)])
 
 
-class RunFile:
+class RunFile(_SwmrFile):
     """A run file of fnet-simd (schema fnet-run-2, or the per-frame groups of fnet-run-1)."""
 
     _ATTRS = ("particles", "polydispersity", "friction", "k_n", "restitution", "kt_over_kn", "compression_speed",
               "dt", "final_density", "frames_planned", "seed")
 
     def __init__(self, path):
-        self.path = str(path)
-        self.file = _open(self.path)
-        self.schema = _text(self.file.attrs.get("schema", ""))
-        if self.schema not in RUN_SCHEMAS:
-            self.file.close()
-            raise ValueError(f"{self.path}: schema {self.schema!r}, expected one of {', '.join(RUN_SCHEMAS)}")
+        super().__init__(path, RUN_SCHEMAS)
         a = self.file.attrs
         self.run_id = _text(a["run_id"])
         self.attrs = {k: a[k].item() for k in self._ATTRS if k in a}
         self.attrs["ensemble"] = _text(a["ensemble"]) if "ensemble" in a else ""
         self.config = json.loads(_text(a["config_json"])) if "config_json" in a else {}
         self.refresh()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def close(self):
-        self.file.close()
 
     def refresh(self):
         """Reads which frames are committed so far; returns their number."""

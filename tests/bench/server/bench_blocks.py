@@ -9,7 +9,9 @@ Then blocks.get between the last two frames (the most contacts), for bottleneck 
 PD1: the median and the largest of CALLS round trips, and the server's own `seconds` (reading both
 networks back from the store, cutting them into blocks, the cells' diagrams and distances).
 """
-import argparse, json, os, re, shutil, socket, statistics, subprocess, tempfile, time
+import argparse, os, shutil, statistics, subprocess, tempfile, time
+
+from fnet_service import DDS_ENV as env, Binaries, start_server, stop
 
 p = argparse.ArgumentParser()
 p.add_argument("build")
@@ -21,42 +23,17 @@ p.add_argument("--calls", type=int, default=30)
 p.add_argument("--domain", type=int, default=85)
 a = p.parse_args()
 
-build = os.path.abspath(a.build)
-src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-env = dict(os.environ, CYCLONEDDS_URI="file://" + os.path.join(src, "deploy", "cyclonedds-loopback.xml"))
-simd = os.path.join(build, "server/sim/fnet-simd")
-server_bin = os.path.join(build, "server/analysis/fnet-server")
-analyze = os.path.join(build, "server/analysis/fnet-analyze")
+bins = Binaries(a.build)
+simd, analyze = bins.simd, bins.analyze
 box = 50 * (a.particles / 2000) ** 0.5
 work = tempfile.mkdtemp(prefix="fnet-bench-blocks-")
-
-
-class Rpc:
-    def __init__(self, port):
-        self.file = socket.create_connection(("127.0.0.1", port)).makefile("rwb")
-        self.id = 0
-
-    def call(self, method, params=None):
-        self.id += 1
-        self.file.write((json.dumps({"jsonrpc": "2.0", "id": self.id, "method": method, "params": params or {}}) + "\n").encode())
-        self.file.flush()
-        while True:
-            msg = json.loads(self.file.readline())
-            if msg.get("id") == self.id:
-                if "error" in msg:
-                    raise RuntimeError(msg["error"])
-                return msg["result"]
-
 
 proc = None
 try:
     subprocess.run([simd, "--particles", str(a.particles), "--box", f"{box:.4f}", "--compression-speed", str(a.speed),
                     "--frames", str(a.frames), "--seed", "5", "--quiet", "--no-dds", "--export-csv",
                     os.path.join(work, "csv")], check=True, env=env)
-    log = open(os.path.join(work, "server.log"), "w")
-    proc = subprocess.Popen([server_bin, "--data-dir", os.path.join(work, "data"), "--port", "0", "--domain",
-                             str(a.domain), "--threads", "2"], stdout=subprocess.PIPE, stderr=log, env=env, text=True)
-    rpc = Rpc(int(re.search(r":(\d+) ", proc.stdout.readline()).group(1)))
+    proc, rpc = start_server(bins, os.path.join(work, "data"), os.path.join(work, "server.log"), a.domain, threads=2)
     subprocess.run([analyze, "publish", "--csv-dir", os.path.join(work, "csv"), "--run-id", "bench", "--domain",
                     str(a.domain)], check=True, env=env, stderr=subprocess.DEVNULL)
     while True:
@@ -85,6 +62,5 @@ try:
                   f"{statistics.median(server):28.2f} {contacts:>20s}")
 finally:
     if proc:
-        proc.terminate()
-        proc.wait()
+        stop(proc)
     shutil.rmtree(work, ignore_errors=True)

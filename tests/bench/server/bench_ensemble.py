@@ -12,10 +12,12 @@ usage: bench_ensemble.py BUILD_DIR [--runs 20] [--frames 100] [--particles 60] [
    bins, mean, standard error, count and mean Z), timed the same way; its bins are checked
    against the served ones.
 """
-import argparse, json, os, re, shutil, socket, statistics, subprocess, sys, tempfile, time
+import argparse, os, shutil, statistics, subprocess, sys, tempfile, time
 
 import h5py
 import numpy as np
+
+from fnet_service import Binaries, start_server, stop
 
 p = argparse.ArgumentParser()
 p.add_argument("build")
@@ -25,33 +27,11 @@ p.add_argument("--particles", type=int, default=60)
 p.add_argument("--domain", type=int, default=76)
 a = p.parse_args()
 
-build = os.path.abspath(a.build)
-src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-env = dict(os.environ, CYCLONEDDS_URI="file://" + os.path.join(src, "deploy", "cyclonedds-loopback.xml"))
-simd = os.path.join(build, "server/sim/fnet-simd")
-server_bin = os.path.join(build, "server/analysis/fnet-server")
-analyze = os.path.join(build, "server/analysis/fnet-analyze")
+bins = Binaries(a.build)
+simd, analyze = bins.simd, bins.analyze
 work = tempfile.mkdtemp(prefix="fnet-bench-ensemble-")
 data = os.path.join(work, "data")
 WIDTH = 0.002
-
-
-class Rpc:
-    def __init__(self, port):
-        self.sock = socket.create_connection(("127.0.0.1", port))
-        self.file = self.sock.makefile("rwb")
-        self.id = 0
-
-    def call(self, method, params=None):
-        self.id += 1
-        self.file.write((json.dumps({"jsonrpc": "2.0", "id": self.id, "method": method, "params": params or {}}) + "\n").encode())
-        self.file.flush()
-        while True:
-            msg = json.loads(self.file.readline())
-            if msg.get("id") == self.id:
-                if "error" in msg:
-                    raise RuntimeError(msg["error"])
-                return msg["result"]
 
 
 def timed(fn, calls):
@@ -99,10 +79,7 @@ try:
                        stdout=subprocess.DEVNULL)
     print(f"made {a.runs} runs x {a.frames} frames of {a.particles} disks in {time.perf_counter() - t:.1f} s",
           file=sys.stderr)
-    log = open(os.path.join(work, "server.log"), "w")
-    server = subprocess.Popen([server_bin, "--data-dir", data, "--port", "0", "--domain", str(a.domain)],
-                              stdout=subprocess.PIPE, stderr=log, env=env, text=True)
-    rpc = Rpc(int(re.search(r":(\d+) ", server.stdout.readline()).group(1)))
+    server, rpc = start_server(bins, data, os.path.join(work, "server.log"), a.domain)
     ens = rpc.call("ensembles.list")["ensembles"][0]
     assert ens["ensemble"] == "bench" and len(ens["runs"]) == a.runs, ens
     samples = ens["frames"] - a.runs
@@ -128,6 +105,5 @@ try:
     print(f"goal: < 50 ms; numpy's bins match the served ones (largest difference {worst:.1e})")
 finally:
     if server:
-        server.terminate()
-        server.wait()
+        stop(server)
     shutil.rmtree(work, ignore_errors=True)

@@ -12,7 +12,9 @@ usage: bench_server.py BUILD_DIR [--frames 100] [--threads 2] [--particles 2000]
    waiting (server.status) - the simulation's frame rate is the anchor the server must keep up with.
 4. series.get on the 100-frame run: median and 99th percentile of 300 calls.
 """
-import argparse, json, os, re, shutil, socket, statistics, subprocess, sys, tempfile, time
+import argparse, os, shutil, statistics, subprocess, tempfile, time
+
+from fnet_service import DDS_ENV as env, Binaries, start_server as start_fnet_server, stop
 
 p = argparse.ArgumentParser()
 p.add_argument("build")
@@ -23,42 +25,16 @@ p.add_argument("--speed", type=float, default=1e-3)
 p.add_argument("--domain", type=int, default=77)
 a = p.parse_args()
 
-build = os.path.abspath(a.build)
-src = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-env = dict(os.environ, CYCLONEDDS_URI="file://" + os.path.join(src, "deploy", "cyclonedds-loopback.xml"))
-simd = os.path.join(build, "server/sim/fnet-simd")
-server_bin = os.path.join(build, "server/analysis/fnet-server")
-analyze = os.path.join(build, "server/analysis/fnet-analyze")
+bins = Binaries(a.build)
+simd, analyze = bins.simd, bins.analyze
 box = 50 * (a.particles / 2000) ** 0.5
 sim_args = ["--particles", str(a.particles), "--box", f"{box:.4f}", "--compression-speed", str(a.speed),
             "--frames", str(a.frames), "--seed", "5", "--quiet"]
 work = tempfile.mkdtemp(prefix="fnet-bench-server-")
 
 
-class Rpc:
-    def __init__(self, port):
-        self.sock = socket.create_connection(("127.0.0.1", port))
-        self.file = self.sock.makefile("rwb")
-        self.id = 0
-
-    def call(self, method, params=None):
-        self.id += 1
-        self.file.write((json.dumps({"jsonrpc": "2.0", "id": self.id, "method": method, "params": params or {}}) + "\n").encode())
-        self.file.flush()
-        while True:
-            msg = json.loads(self.file.readline())
-            if msg.get("id") == self.id:
-                if "error" in msg:
-                    raise RuntimeError(msg["error"])
-                return msg["result"]
-
-
 def start_server(name, domain):
-    log = open(os.path.join(work, name + ".log"), "w")
-    proc = subprocess.Popen([server_bin, "--data-dir", os.path.join(work, name), "--port", "0", "--domain", str(domain),
-                             "--threads", str(a.threads)], stdout=subprocess.PIPE, stderr=log, env=env, text=True)
-    port = int(re.search(r":(\d+) ", proc.stdout.readline()).group(1))
-    return proc, Rpc(port)
+    return start_fnet_server(bins, os.path.join(work, name), os.path.join(work, name + ".log"), domain, a.threads)
 
 
 def wait_run(rpc, run, frames, poll=0.01, watch=None):
@@ -96,7 +72,7 @@ try:
         rpc.call("series.get", {"run": "replay", "metric": "wasserstein2", "dim": 1})
         lat.append(1e3 * (time.perf_counter() - t))
     lat.sort()
-    proc.terminate(); proc.wait()
+    stop(proc)
 
     # Lag behind the simulation running live at full speed.
     proc, rpc = start_server("live", a.domain + 1)
@@ -106,7 +82,7 @@ try:
     sim.wait()
     sim_end = time.perf_counter()
     _, live_last = wait_run(rpc, "live", a.frames, watch=live_inflight)
-    proc.terminate(); proc.wait()
+    stop(proc)
     sim_fps = a.frames / sim_seconds
 
     print(f"fnet-server on {a.frames} frames of {a.particles} disks (v_c = {a.speed}), {a.threads} analysis threads, "

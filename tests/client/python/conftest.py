@@ -1,7 +1,8 @@
 """What the Python client's tests share: real fnet-server, fnet-analyze and fnet-simd processes
 (their paths come from CMake in FNET_SERVER, FNET_ANALYZE, FNET_SIMD), on the DDS loopback
 configuration and a DDS domain of each test file's own (its module-level DOMAIN, 90-99), each
-stopped when its test file is done."""
+stopped when its test file is done. The `server` fixture serves the LAMMPS frames of tests/data on
+that domain as the file's RUN (a file may define its own `server`)."""
 
 import ctypes
 import os
@@ -161,3 +162,64 @@ def wait_for_frames(server, run, frames, limit=300):
 
         wait_for(settled, f"run {run} to reach {frames} frames (see {server.process.log})", limit)
         return found["run"]
+
+
+def serve_lammps(processes, domain, run):
+    """fnet-server on `domain`, the LAMMPS frames of tests/data published to it as run `run` and
+    every one of them settled."""
+    s = start_server(processes, domain)
+    publish_lammps(processes, run, domain)
+    wait_for_frames(s, run, LAMMPS_FRAMES)
+    return s
+
+
+@pytest.fixture(scope="module")
+def server(request, processes):
+    """The test file's server: serve_lammps on its DOMAIN as its RUN (a file may define its own)."""
+    return serve_lammps(processes, request.module.DOMAIN, request.module.RUN)
+
+
+@pytest.fixture()
+def client(server):
+    with server.client() as c:
+        yield c
+
+
+def wait_for_run_file(path, frames):
+    """Until the run file fnet-simd writes holds `frames` frames: the daemon closes it after the
+    last one, and until then HDF5 may refuse a reader."""
+    def readable():
+        try:
+            with fnet.store.open_run_file(path) as f:
+                return len(f.frames) == frames
+        except OSError:
+            return False
+    wait_for(readable, "the run file")
+
+
+def simd_run_file(processes, domain, frames):
+    """A run file of `frames` frames written by fnet-simd without DDS, as run "net"."""
+    out = processes.tmp / "run.h5"
+    processes.start(simd_args(domain, out=out, frames=frames, run_id="net") + ["--no-dds"], "simd.log")
+    wait_for_run_file(out, frames)
+    return out
+
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def plot(*args, port=None):
+    """python3 -m fnet plot with `args`, run to its end; FNET_PORT is `port` (unset by default)."""
+    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
+    env.pop("FNET_PORT", None)
+    if port is not None:
+        env["FNET_PORT"] = str(port)
+    return subprocess.run([sys.executable, "-m", "fnet", "plot", *map(str, args)], capture_output=True, text=True,
+                          env=env, timeout=300)
+
+
+def expect_png(r, path):
+    """The command `r` succeeded and `path` is a PNG file."""
+    assert r.returncode == 0, r.stderr
+    with open(path, "rb") as f:
+        assert f.read(8) == PNG_SIGNATURE

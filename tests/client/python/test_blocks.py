@@ -2,33 +2,15 @@
 fnet-server holding the LAMMPS frames of tests/data: the k x k arrays are the served cells, the
 heat map and its numbers are those arrays, and an unchanged frame's blocks are at distance 0."""
 
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import LAMMPS, LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, start_server, wait_for_frames
+from conftest import LAMMPS, expect_png, plot
 
 DOMAIN = 94
 RUN = "lammps"
-
-
-@pytest.fixture(scope="module")
-def server(processes):
-    s = start_server(processes, DOMAIN)
-    publish_lammps(processes, RUN, DOMAIN)
-    wait_for_frames(s, RUN, LAMMPS_FRAMES)
-    return s
-
-
-@pytest.fixture()
-def client(server):
-    with server.client() as c:
-        yield c
 
 
 def test_block_arrays_are_the_served_cells(client):
@@ -81,12 +63,8 @@ def test_block_table_figure_shows_the_served_values(client, tmp_path):
 
 def test_command_line_draws_the_block_table(server, tmp_path):
     out = tmp_path / "table2.png"
-    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
-    r = subprocess.run([sys.executable, "-m", "fnet", "plot", "blocks", "--run", RUN, "--frame", "9", "--other-frame",
-                        "10", "--k", "2", "--metric", "bottleneck", "--dim", "1", "--port", str(server.port), "--out",
-                        str(out)], capture_output=True, text=True, env=env, timeout=300)
-    assert r.returncode == 0, r.stderr
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    expect_png(plot("blocks", "--run", RUN, "--frame", "9", "--other-frame", "10", "--k", "2", "--metric", "bottleneck",
+                    "--dim", "1", "--port", server.port, "--out", out), out)
 
 
 def test_store_keeps_each_frame_network_and_the_figure_draws_it(server, tmp_path):
@@ -103,9 +81,5 @@ def test_store_keeps_each_frame_network_and_the_figure_draws_it(server, tmp_path
     np.testing.assert_array_equal(canonical(frame.contact_pairs, frame.contact_forces),
                                   canonical(contacts[:, 0:2], contacts[:, 2:4]))
     out = tmp_path / "network.png"
-    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
-    r = subprocess.run([sys.executable, "-m", "fnet", "plot", "network", "--store", str(server.store_path(RUN)),
-                        "--frame", "6", "--other-frame", "7", "--out", str(out)], capture_output=True, text=True,
-                       env=env, timeout=300)
-    assert r.returncode == 0, r.stderr
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    expect_png(plot("network", "--store", server.store_path(RUN), "--frame", "6", "--other-frame", "7", "--out", out),
+               out)

@@ -2,55 +2,17 @@
 tests/data) and a real fnet-simd run file: each kind writes its image; bad options exit 2 naming
 the option, before any work; an unreachable server exits 3, an unknown run 4."""
 
-import os
-import subprocess
-import sys
-
 import pytest
 
-import fnet
-from conftest import LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
+from conftest import expect_png, plot, simd_run_file
 
 DOMAIN = 95
 RUN = "lammps"
 
 
 @pytest.fixture(scope="module")
-def server(processes):
-    s = start_server(processes, DOMAIN)
-    publish_lammps(processes, RUN, DOMAIN)
-    wait_for_frames(s, RUN, LAMMPS_FRAMES)
-    return s
-
-
-@pytest.fixture(scope="module")
 def run_file(processes):
-    out = processes.tmp / "run.h5"
-    processes.start(simd_args(DOMAIN, out=out, frames=3, run_id="net") + ["--no-dds"], "simd.log")
-
-    def readable():
-        try:
-            with fnet.store.open_run_file(out) as f:
-                return len(f.frames) == 3
-        except OSError:
-            return False
-    wait_for(readable, "the run file")
-    return out
-
-
-def plot(*args, port=None):
-    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
-    env.pop("FNET_PORT", None)
-    if port is not None:
-        env["FNET_PORT"] = str(port)
-    return subprocess.run([sys.executable, "-m", "fnet", "plot", *map(str, args)], capture_output=True, text=True,
-                          env=env, timeout=300)
-
-
-def expect_png(r, path):
-    assert r.returncode == 0, r.stderr
-    with open(path, "rb") as f:
-        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    return simd_run_file(processes, DOMAIN, frames=3)
 
 
 def test_distances_of_a_run(server, tmp_path):

@@ -8,25 +8,11 @@ import numpy as np
 import pytest
 
 import fnet
-from conftest import LAMMPS_FRAMES, publish_lammps, start_server, wait_for, wait_for_frames
+from conftest import LAMMPS_FRAMES, wait_for
 
 DOMAIN = 90
 RUN = "lammps"
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
-
-
-@pytest.fixture(scope="module")
-def server(processes):
-    s = start_server(processes, DOMAIN)
-    publish_lammps(processes, RUN, DOMAIN)
-    wait_for_frames(s, RUN, LAMMPS_FRAMES)
-    return s
-
-
-@pytest.fixture()
-def client(server):
-    with server.client() as c:
-        yield c
 
 
 def same(a, b):

@@ -3,15 +3,11 @@ by real fnet-simd realizations (--ensemble E, one seed each): the binned curves 
 series binned by hand, ratio curves the ratio of bin means, the plotted data the served data, and
 an ensemble subscription an iterator of changed bins that unsubscribes on exit."""
 
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 import fnet.figures as figures
-from conftest import SOURCE_DIR, simd_args, start_server, wait_for, wait_for_frames
+from conftest import expect_png, plot, simd_args, start_server, wait_for, wait_for_frames
 
 DOMAIN = 93
 ENSEMBLE = "ens"
@@ -29,12 +25,6 @@ def server(processes):
     for seed in SEEDS:
         wait_for_frames(s, f"{ENSEMBLE}-s{seed}", FRAMES)
     return s
-
-
-@pytest.fixture()
-def client(server):
-    with server.client() as c:
-        yield c
 
 
 def members():
@@ -177,12 +167,6 @@ def test_ensemble_subscription_pushes_the_bins_a_new_realization_changes(server,
     assert len(e["runs"]) == 4 and final.n.sum() == e["frames"] - 4  # every frame but each run's first
 
 
-def plot(*args):
-    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
-    return subprocess.run([sys.executable, "-m", "fnet", "plot", *map(str, args)], capture_output=True, text=True,
-                          env=env, timeout=300)
-
-
 def test_command_line_draws_ensemble_figures(server, tmp_path):
     port = ("--port", server.port)
     for name, args in [("fig6", ("distances", "--ensemble", ENSEMBLE, "--metric", "bottleneck", "--bin-count", 4)),
@@ -195,8 +179,6 @@ def test_command_line_draws_ensemble_figures(server, tmp_path):
                        ("run-ratio", ("ratio", "--run", members()[1], "--ratio", "wasserstein2")),
                        ("run-ratio-binned", ("ratio", "--run", members()[1], "--bin-count", 3))]:
         out = tmp_path / f"{name}.png"
-        r = plot(*args, *port, "--out", out)
-        assert r.returncode == 0, r.stderr
-        assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        expect_png(plot(*args, *port, "--out", out), out)
     r = plot("ensemble", "--ensemble", "nope", "--metric", "bottleneck", *port, "--out", tmp_path / "x.png")
     assert r.returncode == 4 and "nope" in r.stderr

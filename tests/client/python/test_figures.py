@@ -10,45 +10,21 @@ import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import LAMMPS_FRAMES, binary, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
+from conftest import LAMMPS_FRAMES, PNG_SIGNATURE, binary, simd_run_file
 
 DOMAIN = 92
 RUN = "lammps"
 
 
 @pytest.fixture(scope="module")
-def server(processes):
-    s = start_server(processes, DOMAIN)
-    publish_lammps(processes, RUN, DOMAIN)
-    wait_for_frames(s, RUN, LAMMPS_FRAMES)
-    return s
-
-
-@pytest.fixture(scope="module")
 def run_file(processes):
-    out = processes.tmp / "run.h5"
-    processes.start(simd_args(DOMAIN, out=out, frames=4, run_id="net") + ["--no-dds"], "simd.log")
-
-    def readable():
-        try:
-            with fnet.store.open_run_file(out) as f:
-                return len(f.frames) == 4
-        except OSError:
-            return False
-    wait_for(readable, "the run file")
-    return out
-
-
-@pytest.fixture()
-def client(server):
-    with server.client() as c:
-        yield c
+    return simd_run_file(processes, DOMAIN, frames=4)
 
 
 def render(fig, path):
     fig.savefig(path)
     with open(path, "rb") as f:
-        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+        assert f.read(8) == PNG_SIGNATURE
 
 
 def artists(fig, gid):

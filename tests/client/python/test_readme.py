@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 
-from conftest import LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, start_server, wait_for_frames
+from conftest import PNG_SIGNATURE, SOURCE_DIR, serve_lammps
 
 DOMAIN = 96
 RUN = "lammps"
@@ -27,9 +27,7 @@ def readme_example():
 def test_readme_example_runs_against_a_real_server(processes, tmp_path):
     example = readme_example()
     assert len(example.strip().splitlines()) == 5  # what a notebook needs, as the README says
-    server = start_server(processes, DOMAIN)
-    publish_lammps(processes, RUN, DOMAIN)
-    wait_for_frames(server, RUN, LAMMPS_FRAMES)
+    server = serve_lammps(processes, DOMAIN, RUN)
     script = tmp_path / "example.py"
     script.write_text(example)
     env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"), FNET_PORT=str(server.port))
@@ -44,4 +42,4 @@ def test_readme_example_runs_against_a_real_server(processes, tmp_path):
     assert [float(w) for w in words[2:]] == [s.rho[-1], s.z[-1], s.value[-1]]
     assert np.isfinite(s.value[-1])
     with open(tmp_path / "distances.png", "rb") as f:
-        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+        assert f.read(8) == PNG_SIGNATURE

@@ -11,7 +11,8 @@ import pytest
 
 import fnet
 import fnet.figures
-from conftest import SOURCE_DIR, LAMMPS_FRAMES, publish_lammps, simd_args, start_server, wait_for, wait_for_frames
+from conftest import (LAMMPS_FRAMES, SOURCE_DIR, publish_lammps, simd_args, start_server, wait_for, wait_for_frames,
+                      wait_for_run_file)
 
 DOMAIN = 91
 LIVE_DOMAIN = 97
@@ -26,14 +27,7 @@ def simd_run(processes):
     out, csv_dir = processes.tmp / "run.h5", processes.tmp / "csv"
     processes.start(simd_args(DOMAIN, out=out, frames=FRAMES, run_id=RUN) + ["--export-csv", csv_dir], "simd.log")
     wait_for_frames(server, RUN, FRAMES)
-    # The daemon closes its run file after the last frame; until then HDF5 may refuse a reader.
-    def readable():
-        try:
-            with fnet.store.open_run_file(out) as f:
-                return len(f.frames) == FRAMES
-        except OSError:
-            return False
-    wait_for(readable, "the run file")
+    wait_for_run_file(out, FRAMES)
     return server, out, csv_dir
 
 

@@ -8,8 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/support/child_process.hpp"
-#include "tests/support/temp_dir.hpp"
+#include "tests/server/analysis/analyze_cli_fixture.hpp"
 
 namespace fnet::testing {
 namespace {
@@ -18,23 +17,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-class AnalyzeCli : public ::testing::Test {
- protected:
-  ProcessResult analyze(const std::vector<std::string>& args) { return run_process(FNET_ANALYZE, args, dir_.path()); }
-  std::filesystem::path write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
-  const std::filesystem::path& dir() const { return dir_.path(); }
-
-  // Expects exit code `code`, nothing on stdout, and returns stderr.
-  std::string fails_with(int code, const std::vector<std::string>& args) {
-    const ProcessResult r = analyze(args);
-    EXPECT_EQ(r.exit_code, code) << ::testing::PrintToString(args) << "\n" << r.err;
-    EXPECT_EQ(r.out, "");
-    return r.err;
-  }
-
- private:
-  TempDir dir_;
-};
+class AnalyzeCli : public AnalyzeCliTest {};
 
 TEST_F(AnalyzeCli, StoreFromAMissingRunFileSaysNoSuchFile) {
   const std::string missing = (dir() / "nonexistent.h5").string();

@@ -14,9 +14,8 @@
 
 #include "common/codec/explain_json.hpp"
 #include "common/codec/frame_csv.hpp"
-#include "tests/support/child_process.hpp"
+#include "tests/server/analysis/analyze_cli_fixture.hpp"
 #include "tests/support/doc_names.hpp"
-#include "tests/support/temp_dir.hpp"
 
 namespace fnet::testing {
 namespace {
@@ -37,11 +36,8 @@ std::string particles_of(int frame) {
   return (kFrames / name).string();
 }
 
-class ExplainCli : public ::testing::Test {
+class ExplainCli : public AnalyzeCliTest {
  protected:
-  ProcessResult analyze(const std::vector<std::string>& args) { return run_process(FNET_ANALYZE, args, dir_.path()); }
-  std::filesystem::path write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
-
   nlohmann::json json_of(const std::vector<std::string>& args) {
     const ProcessResult r = analyze(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -53,16 +49,6 @@ class ExplainCli : public ::testing::Test {
       return {};
     }
   }
-
-  std::string fails_with(int code, const std::vector<std::string>& args) {
-    const ProcessResult r = analyze(args);
-    EXPECT_EQ(r.exit_code, code) << ::testing::PrintToString(args) << "\n" << r.err;
-    EXPECT_EQ(r.out, "");
-    return r.err;
-  }
-
- private:
-  TempDir dir_;
 };
 
 TEST_F(ExplainCli, JsonIsTheLibrarysExplanation) {
