@@ -6,16 +6,24 @@
 // potentials, early exit); the hubs' many arcs are scanned lazily from ordered sets, so a search
 // costs what it visits, not O(n + m). Internal to the Wasserstein distance.
 //
-// The pair arcs are implicit: every pair (a_i, b_j) with c_ij < da_i + db_j is an
-// arc (the others never beat sending both to the diagonal), never stored. When Dijkstra settles
-// a_i it enters the 2-d tree over B as heap entries keyed by a lower bound on the reduced cost of
-// any arc into a box: power(box distance) + pi(a_i) - max pi(b) over the box (when costs are the
-// lengths themselves also the bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b,
-// -+ y_b, which follow potentials sloping across the box). Boxes are opened best first, boxes whose points are all
-// settled are skipped, so the search is exact on the complete graph and no optimality certificate is needed. The flow
-// starts from a row reduction (each a_i takes its cheapest way out when free) and a column step for the b_j left free
-// (fed from the diagonal when that is their cheapest way in); the diagonal's remaining units are routed before the
-// remaining rows (measured: ~10% fewer nodes settled on LAMMPS PD1 pairs).
+// Pair arcs: every pair (a_i, b_j) with c_ij < da_i + db_j (the others never beat sending both to
+// the diagonal), never stored. solve() works in three stages ("seed, solve sparse, certify"):
+//  1. Candidates: each point's nearest neighbours on the other side and the pairs of the
+//     sorted-birth dynamic programme (sorted_birth_seed.hpp); the searches scan only those.
+//  2. Certify: the LP dual is checked over every pair with the 2-d tree over B (per box the max of
+//     pi(b)). A row with a violated arc gets its best arc added, its potential raised to feasible
+//     and is freed (with its partner) for the searches to route again; a few rounds.
+//  3. Complete: rows still violating after those rounds are repaired the same way and finished by
+//     searches on the complete graph: when Dijkstra settles a_i it enters the 2-d tree over B as
+//     heap entries keyed by a lower bound on the reduced cost of any arc into a box: power(box
+//     distance) + pi(a_i) - max pi(b) over the box (when costs are the lengths themselves also the
+//     bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow
+//     potentials sloping across the box). Boxes are opened best first, boxes whose points are all
+//     settled are skipped, so this search is exact on the complete graph.
+// Either way the answer ends certified: every pair arc checked (stage 2) or searched (stage 3).
+// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
+// column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
+// the diagonal's remaining units are routed before the remaining rows.
 #pragma once
 
 #include <algorithm>
@@ -48,6 +56,7 @@ class ArcPower {
     return std::min(kCap, std::pow(length / unit_, q_));
   }
   bool is_identity() const { return kind_ == Kind::identity; }  // the cost is the length itself
+  bool is_plain() const { return kind_ != Kind::general; }      // q = 1 or 2 in unit 1: never capped
 
  private:
   // q = 1 and q = 2 in unit 1, the hot path, need neither the division nor the cap: their costs
@@ -65,10 +74,15 @@ class DiagonalFlow {
   // power of the point's distance to the diagonal, |x - y| / 2.
   DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlanePoint> b, ArcPower power);
 
-  // Completes the flow to an optimal one.
-  void solve();
-  // A lower bound on the optimal cost from the current potentials (LP duality), valid at any
-  // time; once solve() returns it equals primal_cost() up to rounding: the optimality certificate.
+  // Completes the flow to an optimal one (accept_ratio 1), or stops as soon as its cost is
+  // certified within that ratio of the optimum: primal_cost() <= accept_ratio * dual_bound().
+  void solve(double accept_ratio = 1);
+  // The complete-graph searches alone from the current state (stage 3 only: the solver before
+  // candidates, kept as the reference the benchmarks compare with).
+  void solve_complete();
+  // A lower bound on the optimal cost from the current potentials (LP duality), valid whenever
+  // solve() or solve_complete() has returned; after an exact solve it equals primal_cost() up to
+  // rounding: the optimality certificate.
   double dual_bound() const;
 
   // The current flow's cost: matched pairs plus points sent to the diagonal.
@@ -83,6 +97,15 @@ class DiagonalFlow {
   std::size_t augmentations() const { return augmentations_; }
   std::size_t settled() const { return settled_; }
   std::size_t boxes_opened() const { return boxes_opened_; }
+  std::size_t certify_rounds() const { return rounds_; }       // LP-dual checks over every pair
+  std::size_t repaired_rows() const { return repaired_; }      // rows freed by a violated arc
+  std::size_t candidate_arcs() const { return cand_.size(); }  // pair arcs the sparse searches scan
+  bool finished_on_complete_graph() const { return completed_; }
+  std::span<const std::uint32_t> candidates_of(std::uint32_t i) const {
+    return cand_start_.empty()
+               ? std::span<const std::uint32_t>{}
+               : std::span<const std::uint32_t>(cand_).subspan(cand_start_[i], cand_start_[i + 1] - cand_start_[i]);
+  }
 
  private:
   // Nodes: a_0..a_{n-1}, then b_0..b_{m-1}, then the hubs HA and HB.
@@ -152,7 +175,30 @@ class DiagonalFlow {
   static constexpr double kHuge = 1e300;
   std::vector<BoxMax> box_max_;
   bool recompute_box(std::int32_t k);
+  void recompute_all_boxes();
   void greedy_start();
+  void augment_all();  // routes the diagonal's remaining units, then every free row
+
+  // Stage 1: the candidate arcs per row, CSR (row i's heads are cand_[cand_start_[i] ..
+  // cand_start_[i + 1]]); extra arcs are merged in by add_candidates().
+  void build_candidates();
+  void add_candidates(std::span<const std::pair<std::uint32_t, std::uint32_t>> arcs);
+  // Stage 2: per row a_i the most negative reduced cost of a pair arc, over every pair; rows
+  // beyond rounding are listed in violations_, the rest summed into pair_penalty_ (subtracted by
+  // dual_bound(): the LP dual made feasible by raising those rows' potentials).
+  struct Violation {
+    std::uint32_t row, column;
+    double amount;  // -(reduced cost) > 0
+  };
+  void check_pairs();
+  void repair_violations();  // raise each violating row's potential to feasible and free it
+  bool sparse_ = false;
+  std::vector<std::uint32_t> cand_start_, cand_;
+  std::vector<Violation> violations_;
+  double pair_penalty_ = 0;
+  std::size_t rounds_ = 0, repaired_ = 0;
+  bool completed_ = false;
+  std::unique_ptr<LinfKdTree> tree_a_;
   std::vector<std::int32_t> box_stack_;
   std::vector<double> box_db_;                     // max db over the box
   std::vector<std::uint32_t> box_run_, box_done_;  // points settled in the box during search box_run_

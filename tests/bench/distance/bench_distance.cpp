@@ -37,8 +37,8 @@ int main(int argc, char** argv) {
     const nlohmann::json j = nlohmann::json::parse(in);
     return diagram_from_json(j.at(dim ? "pd1" : "pd0"));
   };
-  std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s\n", "pair", "dim", "pts", "metric", "ms", "value", "augment",
-              "settled/boxes");
+  std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s %s\n", "pair", "dim", "pts", "metric", "ms", "value", "augment",
+              "settled/boxes", "arcs rounds repaired complete");
   for (std::size_t f = 0; f < files.size(); f += 2) {
     double pair_total = 0;
     for (int dim = 0; dim < 2; ++dim) {
@@ -57,12 +57,13 @@ int main(int argc, char** argv) {
         pair_total += t;
         const std::string name =
             files[f].substr(files[f].rfind('/') + 1) + "->" + files[f + 1].substr(files[f + 1].rfind('/') + 1);
-        std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu\n", name.c_str(), dim,
+        std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu %zu %zu %zu %d\n", name.c_str(), dim,
                     std::max(a.size(), b.size()),
                     q == 0   ? "bottleneck"
                     : q == 1 ? "W1"
                              : "W2",
-                    t * 1e3, value, st.augmentations, st.settled, st.boxes_opened);
+                    t * 1e3, value, st.augmentations, st.settled, st.boxes_opened, st.candidate_arcs, st.certify_rounds,
+                    st.repaired_rows, st.completed ? 1 : 0);
       }
     }
     std::printf("  six distances of this file pair: %.2f ms\n", pair_total * 1e3);
