@@ -1,50 +1,85 @@
 #include "common/codec/frame_csv.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
-#include <fstream>
+#include <cstring>
 #include <string>
 #include <string_view>
+
+#include "common/codec/file_text.hpp"
 
 namespace fnet {
 namespace {
 
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// A field without the blanks around it (and the '\r' of a CRLF line end).
+std::string_view trimmed(const char* first, const char* last) {
+  while (first != last && is_space(*first)) ++first;
+  while (last != first && (is_space(last[-1]) || last[-1] == '\r')) --last;
+  return {first, static_cast<std::size_t>(last - first)};
+}
+
+bool is_blank(std::string_view line) {
+  return std::all_of(line.begin(), line.end(), [](char c) { return is_space(c) || c == '\r'; });
+}
+
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> out;
-  std::size_t start = 0;
+  const char* first = line.data();
+  const char* const end = line.data() + line.size();
   while (true) {
-    const std::size_t comma = line.find(',', start);
-    std::string_view field =
-        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
-    while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r'))
-      field.remove_suffix(1);
-    out.push_back(field);
-    if (comma == std::string_view::npos) return out;
-    start = comma + 1;
+    const char* comma = std::find(first, end, ',');
+    out.push_back(trimmed(first, comma));
+    if (comma == end) return out;
+    first = comma + 1;
   }
 }
 
-// Reads a CSV whose header must contain `names`; calls row(values) with the fields in that order.
+// The lines of a text as std::getline gives them: split at '\n', a last line without one counts,
+// and a final '\n' starts no empty line.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : next_(text.data()), end_(text.data() + text.size()) {}
+
+  bool next(std::string_view& line) {
+    if (next_ == end_) return false;
+    const auto* newline = static_cast<const char*>(std::memchr(next_, '\n', static_cast<std::size_t>(end_ - next_)));
+    const char* stop = newline ? newline : end_;
+    line = {next_, static_cast<std::size_t>(stop - next_)};
+    next_ = newline ? newline + 1 : end_;
+    ++number_;
+    return true;
+  }
+  std::size_t number() const { return number_; }
+
+ private:
+  const char* next_;
+  const char* end_;
+  std::size_t number_ = 0;
+};
+
+// Reads a CSV whose header must contain `names`; calls row(values, fail, line) with the fields in
+// that order. One pass over the file held whole; a row costs no allocation.
 template <std::size_t K, class Row>
 void read_table(const std::filesystem::path& path, const std::array<std::string_view, K>& names, Row row) {
-  std::ifstream in(path);
-  if (!in) throw CsvError(path.string() + ": cannot open file");
-  std::string line;
-  std::size_t line_no = 0;
+  const std::optional<std::string> file = read_file_text(path);
+  if (!file) throw CsvError(path.string() + ": cannot open file");
+  const std::string& text = *file;
+  Lines lines(text);
   const auto fail = [&](const std::string& what) {
-    throw CsvError(path.string() + ":" + std::to_string(line_no) + ": " + what);
+    throw CsvError(path.string() + ":" + std::to_string(lines.number()) + ": " + what);
   };
-  std::array<std::size_t, K> column{};
-  std::size_t width = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (split(line) == std::vector<std::string_view>{""}) continue;  // blank line
+  constexpr std::size_t kUnused = K;
+  std::vector<std::size_t> slot;  // per column of the file: which of `names` it holds, or kUnused
+  std::string_view line;
+  while (lines.next(line)) {
+    if (is_blank(line)) continue;
     const auto header = split(line);
-    width = header.size();
+    slot.assign(header.size(), kUnused);
     for (std::size_t k = 0; k < K; ++k) {
-      std::size_t c = 0;
-      while (c < header.size() && header[c] != names[k]) ++c;
+      const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), names[k]) - header.begin());
       if (c == header.size()) {
         std::string expected;
         for (auto n : names) {
@@ -53,20 +88,29 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
         }
         fail("header lacks column '" + std::string(names[k]) + "' (expected " + expected + ")");
       }
-      column[k] = c;
+      if (slot[c] == kUnused) slot[c] = k;
     }
     break;
   }
-  if (width == 0) fail("empty file: no header");
+  if (slot.empty()) fail("empty file: no header");
+  const std::size_t width = slot.size();
   std::array<std::string_view, K> fields;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto cells = split(line);
-    if (cells.size() == 1 && cells[0].empty()) continue;
-    if (cells.size() != width)
-      fail("expected " + std::to_string(width) + " fields, found " + std::to_string(cells.size()));
-    for (std::size_t k = 0; k < K; ++k) fields[k] = cells[column[k]];
-    row(fields, fail, line_no);
+  while (lines.next(line)) {
+    const char* first = line.data();
+    const char* const end = line.data() + line.size();
+    std::size_t c = 0;
+    while (true) {
+      const char* comma = std::find(first, end, ',');
+      if (c < width && slot[c] != kUnused) fields[slot[c]] = trimmed(first, comma);
+      ++c;
+      if (comma == end) break;
+      first = comma + 1;
+    }
+    if (c != width) {
+      if (c == 1 && is_blank(line)) continue;
+      fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
+    }
+    row(fields, fail, lines.number());
   }
 }
 
@@ -115,13 +159,14 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   std::vector<Particle> out(rows.size());
   std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
   for (const Row& r : rows) {
-    const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
-    if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
-      throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " +
-                     std::to_string(rows.size()) + "): ids must be 0..n-1");
-    if (seen_at[r.id])
+    if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size() || seen_at[r.id]) {
+      const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
+      if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
+        throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " +
+                       std::to_string(rows.size()) + "): ids must be 0..n-1");
       throw CsvError(where + "particle id " + std::to_string(r.id) + " appears twice (first on line " +
                      std::to_string(seen_at[r.id]) + ")");
+    }
     seen_at[r.id] = r.line;
     out[r.id] = r.particle;
   }

@@ -47,7 +47,9 @@ int diagram_command(const std::vector<std::string>& args) {
       contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
   fnet::validate(frame);
   const fnet::FrameDiagrams diagrams = fnet::compute_persistence(fnet::build_network(frame, kind));
-  std::cout << fnet::to_json(diagrams).dump() << "\n";
+  std::string text = fnet::diagram_document_text(diagrams);
+  text += '\n';
+  std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
   return 0;
 }
 

@@ -85,6 +85,20 @@ TEST_F(AnalyzeCli, DistanceChecksItsOptionsWithTheSharedVocabulary) {
   EXPECT_EQ(out["dim"], 1);
 }
 
+// A document cut short or with a bad number is bad input: exit 1, the file and the place named.
+TEST_F(AnalyzeCli, DistanceNamesTheFileAndPlaceOfABrokenDocument) {
+  const auto a = write("a.json", R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1.5]]})");
+  const auto cut = write("cut.json", R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1)");
+  EXPECT_THAT(fails_with(1, {"distance", a.string(), cut.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(cut.string()), HasSubstr("not JSON"), HasSubstr("column 34")));
+  const auto bad = write("bad.json", "{\"pd0\":[],\n\"pd1\":[[1.0,0.8],[2.0,1.5.0]]}");
+  EXPECT_THAT(fails_with(1, {"distance", bad.string(), a.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(bad.string()), HasSubstr("line 2, column 26")));
+  const auto reversed = write("rev.json", R"({"pd1":[[1.0,0.8],[1.5,2.0]]})");
+  EXPECT_THAT(fails_with(1, {"distance", a.string(), reversed.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(reversed.string()), HasSubstr("pd1: point 1"), HasSubstr("birth 1.5 < death 2.0")));
+}
+
 TEST_F(AnalyzeCli, HelpNamesTheExitCodes) {
   const ProcessResult r = analyze({"--help"});
   EXPECT_EQ(r.exit_code, 0);
