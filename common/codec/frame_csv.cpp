@@ -6,6 +6,8 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "common/codec/file_text.hpp"
 
@@ -60,10 +62,67 @@ class Lines {
   std::size_t number_ = 0;
 };
 
-// Reads a CSV whose header must contain `names`; calls row(values, fail, line) with the fields in
-// that order. One pass over the file held whole; a row costs no allocation.
-template <std::size_t K, class Row>
-void read_table(const std::filesystem::path& path, const std::array<std::string_view, K>& names, Row row) {
+template <class T, class Fail>
+T parse(std::string_view text, std::string_view column, Fail fail) {
+  T value{};
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (!text.empty() && text.front() == '+') {
+    ++first;
+    if (first != last && (*first == '-' || *first == '+')) first = last;  // "+-2" is not a number
+  }
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (text.empty() || ec != std::errc() || ptr != last)
+    fail("column '" + std::string(column) + "': '" + std::string(text) + "' is not a valid " +
+         (std::is_integral_v<T> ? "integer" : "number"));
+  return value;
+}
+
+// The number at p, which p then passes; false if there is none.
+template <class V>
+bool take_number(const char*& p, const char* end, V& value) {
+  const auto [ptr, ec] = std::from_chars(p, end, value);
+  if (ec != std::errc() || ptr == p) return false;
+  p = ptr;
+  return true;
+}
+
+// take_number into the k-th of the values.
+template <class Tuple, std::size_t... I>
+bool take_value(std::size_t k, const char*& p, const char* end, Tuple& values, std::index_sequence<I...>) {
+  bool ok = false;
+  ((k == I && (ok = take_number(p, end, std::get<I>(values)))), ...);
+  return ok;
+}
+
+// A row as fnet writes it: every value a bare number, the fields split by commas alone, parsed
+// where they stand (from_chars finds each one's end). False at anything else (blanks, a '+', a
+// wrong count, a bad value): the caller then reads the row field by field, which says what is
+// wrong. Where this succeeds, that reading would give the same values.
+template <class... T>
+bool read_plain_row(std::string_view line, const std::vector<std::size_t>& slot, std::tuple<T...>& values) {
+  const char* p = line.data();
+  const char* const end = line.data() + line.size();
+  const std::size_t width = slot.size();
+  for (std::size_t c = 0; c < width; ++c) {
+    if (slot[c] == sizeof...(T))
+      p = std::find(p, end, ',');
+    else if (!take_value(slot[c], p, end, values, std::index_sequence_for<T...>{}))
+      return false;
+    if (c + 1 < width) {
+      if (p == end || *p != ',') return false;
+      ++p;
+    }
+  }
+  return is_blank({p, static_cast<std::size_t>(end - p)});  // at most a '\r' left
+}
+
+// Reads a CSV whose header must contain `names`; calls row(values, line) with the values of those
+// columns, of types T..., in that order. One pass over the file held whole; a row costs no
+// allocation.
+template <class... T, class Row>
+void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names, Row row) {
+  constexpr std::size_t K = sizeof...(T);
   const std::optional<std::string> file = read_file_text(path);
   if (!file) throw CsvError(path.string() + ": cannot open file");
   const std::string& text = *file;
@@ -94,40 +153,31 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
   }
   if (slot.empty()) fail("empty file: no header");
   const std::size_t width = slot.size();
+  std::tuple<T...> values;
   std::array<std::string_view, K> fields;
   while (lines.next(line)) {
-    const char* first = line.data();
-    const char* const end = line.data() + line.size();
-    std::size_t c = 0;
-    while (true) {
-      const char* comma = std::find(first, end, ',');
-      if (c < width && slot[c] != kUnused) fields[slot[c]] = trimmed(first, comma);
-      ++c;
-      if (comma == end) break;
-      first = comma + 1;
+    if (!read_plain_row(line, slot, values)) {
+      const char* first = line.data();
+      const char* const end = line.data() + line.size();
+      std::size_t c = 0;
+      while (true) {
+        const char* comma = std::find(first, end, ',');
+        if (c < width && slot[c] != kUnused) fields[slot[c]] = trimmed(first, comma);
+        ++c;
+        if (comma == end) break;
+        first = comma + 1;
+      }
+      if (c != width) {
+        if (c == 1 && is_blank(line)) continue;
+        fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
+      }
+      [&]<std::size_t... I>(std::index_sequence<I...>) {
+        ((std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], names[I], fail)), ...);
+      }
+      (std::index_sequence_for<T...>{});
     }
-    if (c != width) {
-      if (c == 1 && is_blank(line)) continue;
-      fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
-    }
-    row(fields, fail, lines.number());
+    row(values, lines.number());
   }
-}
-
-template <class T, class Fail>
-T parse(std::string_view text, std::string_view column, Fail fail) {
-  T value{};
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  if (!text.empty() && text.front() == '+') {
-    ++first;
-    if (first != last && (*first == '-' || *first == '+')) first = last;  // "+-2" is not a number
-  }
-  const auto [ptr, ec] = std::from_chars(first, last, value);
-  if (text.empty() || ec != std::errc() || ptr != last)
-    fail("column '" + std::string(column) + "': '" + std::string(text) + "' is not a valid " +
-         (std::is_integral_v<T> ? "integer" : "number"));
-  return value;
 }
 
 }  // namespace
@@ -135,9 +185,8 @@ T parse(std::string_view text, std::string_view column, Fail fail) {
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
   std::vector<Contact> out;
   static constexpr std::array<std::string_view, 4> names{"i", "j", "fn", "ft"};
-  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t) {
-    out.push_back({parse<std::int64_t>(f[0], "i", fail), parse<std::int64_t>(f[1], "j", fail),
-                   parse<double>(f[2], "fn", fail), parse<double>(f[3], "ft", fail)});
+  read_table<std::int64_t, std::int64_t, double, double>(path, names, [&](const auto& v, std::size_t) {
+    out.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
   });
   return out;
 }
@@ -150,11 +199,8 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   };
   std::vector<Row> rows;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
-  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t line) {
-    rows.push_back(
-        {parse<std::int64_t>(f[0], "id", fail),
-         Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)},
-         line});
+  read_table<std::int64_t, double, double, double>(path, names, [&](const auto& v, std::size_t line) {
+    rows.push_back({std::get<0>(v), Particle{std::get<1>(v), std::get<2>(v), std::get<3>(v)}, line});
   });
   std::vector<Particle> out(rows.size());
   std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
