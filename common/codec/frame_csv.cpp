@@ -55,6 +55,7 @@ class Lines {
     return true;
   }
   std::size_t number() const { return number_; }
+  std::string_view rest() const { return {next_, static_cast<std::size_t>(end_ - next_)}; }
 
  private:
   const char* next_;
@@ -117,11 +118,12 @@ bool read_plain_row(std::string_view line, const std::vector<std::size_t>& slot,
   return is_blank({p, static_cast<std::size_t>(end - p)});  // at most a '\r' left
 }
 
-// Reads a CSV whose header must contain `names`; calls row(values, line) with the values of those
-// columns, of types T..., in that order. One pass over the file held whole; a row costs no
-// allocation.
-template <class... T, class Row>
-void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names, Row row) {
+// Reads a CSV whose header must contain `names`; calls reserve(n) with an upper bound on the number
+// of rows, then row(values, line) with the values of those columns, of types T..., in that order.
+// One pass over the file held whole; a row costs no allocation.
+template <class... T, class Reserve, class Row>
+void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names,
+                Reserve reserve, Row row) {
   constexpr std::size_t K = sizeof...(T);
   const std::optional<std::string> file = read_file_text(path);
   if (!file) throw CsvError(path.string() + ": cannot open file");
@@ -153,6 +155,10 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
   }
   if (slot.empty()) fail("empty file: no header");
   const std::size_t width = slot.size();
+  // Vectors sized once, from the length of the first row: growing them would copy at every
+  // doubling, and counting the lines first would cost a pass over the file.
+  const std::string_view rest = lines.rest();
+  reserve(rest.size() / (std::min(rest.find('\n'), rest.size()) + 1) + 1);
   std::tuple<T...> values;
   std::array<std::string_view, K> fields;
   while (lines.next(line)) {
@@ -185,9 +191,11 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
   std::vector<Contact> out;
   static constexpr std::array<std::string_view, 4> names{"i", "j", "fn", "ft"};
-  read_table<std::int64_t, std::int64_t, double, double>(path, names, [&](const auto& v, std::size_t) {
-    out.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
-  });
+  read_table<std::int64_t, std::int64_t, double, double>(
+      path, names, [&](std::size_t n) { out.reserve(n); },
+      [&](const auto& v, std::size_t) {
+        out.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+      });
   return out;
 }
 
@@ -199,9 +207,11 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   };
   std::vector<Row> rows;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
-  read_table<std::int64_t, double, double, double>(path, names, [&](const auto& v, std::size_t line) {
-    rows.push_back({std::get<0>(v), Particle{std::get<1>(v), std::get<2>(v), std::get<3>(v)}, line});
-  });
+  read_table<std::int64_t, double, double, double>(
+      path, names, [&](std::size_t n) { rows.reserve(n); },
+      [&](const auto& v, std::size_t line) {
+        rows.push_back({std::get<0>(v), Particle{std::get<1>(v), std::get<2>(v), std::get<3>(v)}, line});
+      });
   std::vector<Particle> out(rows.size());
   std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
   for (const Row& r : rows) {
