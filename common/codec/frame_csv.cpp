@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cstring>
+#include <numeric>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -200,31 +201,45 @@ std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
 }
 
 std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
-  struct Row {
-    std::int64_t id;
-    Particle particle;
-    std::size_t line;
-  };
-  std::vector<Row> rows;
+  // Rows land in the table in file order; their ids are kept only once one is out of order (the
+  // table then moves each row to its id). In order, as fnet writes them, ids 0..n-1 need no check.
+  std::vector<Particle> table;
+  std::vector<std::int64_t> ids;
+  std::vector<std::size_t> lines;
+  bool in_order = true;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
   read_table<std::int64_t, double, double, double>(
-      path, names, [&](std::size_t n) { rows.reserve(n); },
+      path, names,
+      [&](std::size_t n) {
+        table.reserve(n);
+        lines.reserve(n);
+      },
       [&](const auto& v, std::size_t line) {
-        rows.push_back({std::get<0>(v), Particle{std::get<1>(v), std::get<2>(v), std::get<3>(v)}, line});
+        const std::int64_t id = std::get<0>(v);
+        if (in_order && id != static_cast<std::int64_t>(table.size())) {
+          in_order = false;
+          ids.resize(table.size());
+          std::iota(ids.begin(), ids.end(), std::int64_t{0});
+        }
+        if (!in_order) ids.push_back(id);
+        table.push_back({std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+        lines.push_back(line);
       });
-  std::vector<Particle> out(rows.size());
-  std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
-  for (const Row& r : rows) {
-    if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size() || seen_at[r.id]) {
-      const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
-      if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
-        throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " +
-                       std::to_string(rows.size()) + "): ids must be 0..n-1");
-      throw CsvError(where + "particle id " + std::to_string(r.id) + " appears twice (first on line " +
-                     std::to_string(seen_at[r.id]) + ")");
+  if (in_order) return table;
+  std::vector<Particle> out(table.size());
+  std::vector<std::size_t> seen_at(table.size(), 0);  // line of the row that gave each id
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    const std::int64_t id = ids[k];
+    if (id < 0 || static_cast<std::size_t>(id) >= table.size() || seen_at[id]) {
+      const std::string where = path.string() + ":" + std::to_string(lines[k]) + ": ";
+      if (id < 0 || static_cast<std::size_t>(id) >= table.size())
+        throw CsvError(where + "particle id " + std::to_string(id) + " out of range [0, " +
+                       std::to_string(table.size()) + "): ids must be 0..n-1");
+      throw CsvError(where + "particle id " + std::to_string(id) + " appears twice (first on line " +
+                     std::to_string(seen_at[id]) + ")");
     }
-    seen_at[r.id] = r.line;
-    out[r.id] = r.particle;
+    seen_at[id] = lines[k];
+    out[id] = table[k];
   }
   return out;
 }
