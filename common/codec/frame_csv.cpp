@@ -57,6 +57,11 @@ class Lines {
   }
   std::size_t number() const { return number_; }
   std::string_view rest() const { return {next_, static_cast<std::size_t>(end_ - next_)}; }
+  // Counts the line that ends at `stop` (its '\n', or the end of the text) as read.
+  void take_through(const char* stop) {
+    next_ = stop == end_ ? end_ : stop + 1;
+    ++number_;
+  }
 
  private:
   const char* next_;
@@ -97,26 +102,29 @@ bool take_value(std::size_t k, const char*& p, const char* end, Tuple& values, s
   return ok;
 }
 
-// A row as fnet writes it: every value a bare number, the fields split by commas alone, parsed
-// where they stand (from_chars finds each one's end). False at anything else (blanks, a '+', a
-// wrong count, a bad value): the caller then reads the row field by field, which says what is
-// wrong. Where this succeeds, that reading would give the same values.
+// A row as fnet writes it, at the start of text: every value a bare number, the fields split by
+// commas alone, parsed where they stand (from_chars finds each one's end, the last one's is the
+// line's). Returns where the line ends (its '\n' or the end of the text), or null at anything else
+// (blanks, a '+', a wrong count, a bad value): the caller then reads the line field by field,
+// which says what is wrong. Where this succeeds, that reading would give the same values.
 template <class... T>
-bool read_plain_row(std::string_view line, const std::vector<std::size_t>& slot, std::tuple<T...>& values) {
-  const char* p = line.data();
-  const char* const end = line.data() + line.size();
+const char* read_plain_row(std::string_view text, const std::vector<std::size_t>& slot, std::tuple<T...>& values) {
+  const char* p = text.data();
+  const char* const end = text.data() + text.size();
   const std::size_t width = slot.size();
   for (std::size_t c = 0; c < width; ++c) {
-    if (slot[c] == sizeof...(T))
-      p = std::find(p, end, ',');
-    else if (!take_value(slot[c], p, end, values, std::index_sequence_for<T...>{}))
-      return false;
+    if (slot[c] == sizeof...(T)) {
+      while (p != end && *p != ',' && *p != '\n') ++p;
+    } else if (!take_value(slot[c], p, end, values, std::index_sequence_for<T...>{})) {
+      return nullptr;
+    }
     if (c + 1 < width) {
-      if (p == end || *p != ',') return false;
+      if (p == end || *p != ',') return nullptr;
       ++p;
     }
   }
-  return is_blank({p, static_cast<std::size_t>(end - p)});  // at most a '\r' left
+  if (p != end && *p == '\r') ++p;
+  return p == end || *p == '\n' ? p : nullptr;
 }
 
 // Reads a CSV whose header must contain `names`; calls reserve(n) with an upper bound on the number
@@ -126,9 +134,9 @@ template <class... T, class Reserve, class Row>
 void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names,
                 Reserve reserve, Row row) {
   constexpr std::size_t K = sizeof...(T);
-  const std::optional<std::string> file = read_file_text(path);
+  const std::optional<FileText> file = FileText::read(path);
   if (!file) throw CsvError(path.string() + ": cannot open file");
-  const std::string& text = *file;
+  const std::string_view text = file->view();
   Lines lines(text);
   const auto fail = [&](const std::string& what) {
     throw CsvError(path.string() + ":" + std::to_string(lines.number()) + ": " + what);
@@ -162,8 +170,11 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
   reserve(rest.size() / (std::min(rest.find('\n'), rest.size()) + 1) + 1);
   std::tuple<T...> values;
   std::array<std::string_view, K> fields;
-  while (lines.next(line)) {
-    if (!read_plain_row(line, slot, values)) {
+  while (true) {
+    if (const char* stop = read_plain_row(lines.rest(), slot, values)) {
+      lines.take_through(stop);
+    } else {
+      if (!lines.next(line)) break;
       const char* first = line.data();
       const char* const end = line.data() + line.size();
       std::size_t c = 0;

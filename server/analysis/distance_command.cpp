@@ -23,10 +23,10 @@ namespace fnet::analyze {
 namespace {
 
 Diagram read_diagram(const std::string& path, int dim) {
-  const std::optional<std::string> text = read_file_text(path);
+  const std::optional<FileText> text = FileText::read(path);
   if (!text) throw std::runtime_error("cannot open " + path);
   try {
-    return parse_document_diagram(*text, dim);
+    return parse_document_diagram(text->view(), dim);
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": not JSON: " + e.what());
   } catch (const std::invalid_argument& e) {

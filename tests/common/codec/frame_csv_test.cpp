@@ -6,9 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <string>
+#include <sys/stat.h>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -250,6 +253,20 @@ TEST(FrameCsv, EveryDoubleReadsBackBitForBit) {
     EXPECT_EQ(bits(read_particles[k].y), bits(particles[k].y)) << "particle " << k;
     EXPECT_EQ(bits(read_particles[k].r), bits(particles[k].r)) << "particle " << k;
   }
+}
+
+// A file read whole need not be a regular file: a pipe, of unknown size, is read to its end.
+TEST(FrameCsv, ReadsFromAPipe) {
+  TempDir dir;
+  const auto fifo = dir.path() / "contacts.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string text = "i,j,fn,ft\n";
+  for (int k = 0; k < 3000; ++k) text += std::to_string(k) + "," + std::to_string(k + 1) + ",0.5,0.25\n";
+  std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << text; });
+  const auto contacts = read_contacts_csv(fifo);
+  writer.join();
+  ASSERT_EQ(contacts.size(), 3000u);
+  EXPECT_TRUE(same_contact(contacts[2999], {2999, 3000, 0.5, 0.25}));
 }
 
 // Blanks around fields, blank lines (also of spaces and tabs), a last line without its newline:
