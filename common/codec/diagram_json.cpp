@@ -16,35 +16,32 @@ namespace {
 // The checks diagram_from_json makes; a point failing them goes the slow way for its message.
 bool valid_point(double birth, double death) { return death == kNeverDies || birth >= death; }
 
-char* write_diagram(char* out, const Diagram& diagram) {
-  *out++ = '[';
-  for (const PersistencePoint& p : diagram) {
+// Point by point through a small buffer: the text only touches the memory it fills, not all it reserved.
+void append_diagram(std::string& text, const Diagram& diagram) {
+  text += '[';
+  for (std::size_t k = 0; k < diagram.size(); ++k) {
+    char point[2 * kJsonNumberMaxChars + 4];
+    char* out = point;
+    if (k > 0) *out++ = ',';
     *out++ = '[';
-    out = write_json_number(out, p.birth);
+    out = write_json_number(out, diagram[k].birth);
     *out++ = ',';
-    out = write_json_number(out, p.death);
+    out = write_json_number(out, diagram[k].death);
     *out++ = ']';
-    *out++ = ',';
+    text.append(point, out);
   }
-  if (!diagram.empty()) --out;  // the last comma
-  *out++ = ']';
-  return out;
+  text += ']';
 }
 
-char* write_count(char* out, std::size_t n) {
+void append_count(std::string& text, std::size_t n) {
   char buf[24];
-  const auto end = std::to_chars(buf, buf + sizeof buf, n).ptr;
-  std::memcpy(out, buf, static_cast<std::size_t>(end - buf));
-  return out + (end - buf);
+  text.append(buf, std::to_chars(buf, buf + sizeof buf, n).ptr);
 }
 
-char* write_key(char* out, std::string_view key) {
-  *out++ = '"';
-  std::memcpy(out, key.data(), key.size());
-  out += key.size();
-  *out++ = '"';
-  *out++ = ':';
-  return out;
+void append_key(std::string& text, std::string_view key) {
+  text += '"';
+  text += key;
+  text += "\":";
 }
 
 // One pass over a document of plain shape, looking for one key's diagram. Empty when the text is
@@ -182,22 +179,20 @@ nlohmann::json to_json(const FrameDiagrams& d) {
 }
 
 std::string diagram_document_text(const FrameDiagrams& d) {
-  constexpr std::size_t kPointChars = 2 * kJsonNumberMaxChars + 4;  // [b,d],
-  std::string text(128 + kPointChars * (d.pd0.size() + d.pd1.size()), '\0');
+  std::string text;
+  text.reserve(128 + (2 * kJsonNumberMaxChars + 4) * (d.pd0.size() + d.pd1.size()));
   // Keys in nlohmann's order (sorted), as to_json(d).dump() prints them.
-  char* out = text.data();
-  *out++ = '{';
-  out = write_count(write_key(out, "edges"), d.edges);
-  *out++ = ',';
-  out = write_diagram(write_key(out, diagram_key(0)), d.pd0);
-  *out++ = ',';
-  out = write_diagram(write_key(out, diagram_key(1)), d.pd1);
-  *out++ = ',';
-  out = write_count(write_key(out, "triangles"), d.triangles);
-  *out++ = ',';
-  out = write_count(write_key(out, "vertices"), d.vertices);
-  *out++ = '}';
-  text.resize(static_cast<std::size_t>(out - text.data()));
+  append_key(text += '{', "edges");
+  append_count(text, d.edges);
+  append_key(text += ',', diagram_key(0));
+  append_diagram(text, d.pd0);
+  append_key(text += ',', diagram_key(1));
+  append_diagram(text, d.pd1);
+  append_key(text += ',', "triangles");
+  append_count(text, d.triangles);
+  append_key(text += ',', "vertices");
+  append_count(text, d.vertices);
+  text += '}';
   return text;
 }
 
