@@ -3,11 +3,14 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
+#include <sys/mman.h>
 #include <vector>
 
 #include "server/analysis/commands.hpp"
@@ -43,13 +46,29 @@ int run_in_io_binary(const std::string& name, char** argv) {
   return 1;
 }
 
+// A 40 000-grain frame touches ~11 MiB, ~2 800 fresh 4 KiB pages, each a page fault costing
+// microseconds on a virtual machine: more than the persistence. Large blocks come from the heap and
+// stay there (what one stage frees, the next reuses), and the heap, grown once by 64 MiB of address
+// space (untouched, so free), is offered transparent huge pages: 2 MiB per fault where the kernel
+// grants them. Only advice: without THP nothing changes.
+void prepare_heap() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  const auto start = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  mallopt(M_TOP_PAD, 64 << 20);
+  void* volatile block = std::malloc(1 << 20);  // volatile: a malloc freed unused may be elided
+  std::free(block);
+  mallopt(M_TOP_PAD, 128 << 10);  // glibc's default, for later growth
+  const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const std::uintptr_t first = (start + kHuge - 1) & ~(kHuge - 1), last = end & ~(kHuge - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Large blocks from the heap, kept there: what one stage frees (a file's text, a vector that
-  // grew) the next reuses, instead of unmapping it and faulting fresh pages in one by one.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  prepare_heap();
   const std::map<std::string, fnet::analyze::Command> commands = {
       {"diagram", fnet::analyze::diagram_command},
       {"distance", fnet::analyze::distance_command},
