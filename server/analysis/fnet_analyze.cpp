@@ -41,7 +41,8 @@ int run_in_io_binary(const std::string& name, char** argv) {
   const std::filesystem::path io = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "fnet-analyze-io";
   std::string program = io.string();
   argv[0] = program.data();
-  execv(program.c_str(), argv);
+  // Without /proc and started through PATH, argv[0] names no directory: look along PATH too.
+  (io.has_parent_path() ? execv : execvp)(program.c_str(), argv);
   std::cerr << "fnet-analyze " << name << ": cannot run " << program << ": " << std::strerror(errno) << "\n";
   return 1;
 }
