@@ -153,6 +153,7 @@ TEST(DiagramJson, TextReaderRefusesBrokenDocumentsNamingThePlace) {
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2,1]],})", 1); }), HasSubstr("column 16"));
   // Keys the reader does not need are checked all the same.
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2,1]],"ok":tru})", 1); }), HasSubstr("column 24"));
+  EXPECT_THAT(error_of([] { parse_document_diagram(R"({"ok":t,"pd1":[[2,1]]})", 1); }), HasSubstr("column 8"));
   EXPECT_THAT(error_of([] { parse_document_diagram("{\"label\":\"gr\xff\",\"pd1\":[[2,1]]}", 1); }),
               AllOf(HasSubstr("parse_error"), HasSubstr("UTF-8")));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd0":[[2,1]]})", 1); }), HasSubstr("no \"pd1\""));
