@@ -63,7 +63,9 @@ void prepare_heap() {
   mallopt(M_TOP_PAD, 128 << 10);  // glibc's default, for later growth
   const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));
   const std::uintptr_t first = (start + kHuge - 1) & ~(kHuge - 1), last = end & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  const auto failed = reinterpret_cast<std::uintptr_t>(reinterpret_cast<void*>(-1));  // sbrk's error
+  if (start != failed && end != failed && last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 }
 
 }  // namespace
