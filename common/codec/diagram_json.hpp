@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,10 @@ namespace fnet {
 nlohmann::json to_json(const Diagram& diagram);         // [[birth, death], ...]
 nlohmann::json to_json(const FrameDiagrams& diagrams);  // the diagram document
 
+// The diagram document as text, the same as to_json(diagrams).dump() reads (keys, order, numbers
+// bit for bit), written straight into one buffer: no DOM, a few bytes of work per number.
+std::string diagram_document_text(const FrameDiagrams& diagrams);
+
 // Throws std::invalid_argument naming what is wrong (not an array of pairs, non-finite, birth < death).
 Diagram diagram_from_json(const nlohmann::json& value);
 
@@ -26,5 +31,12 @@ std::string diagram_key(int dim);
 // The diagram of dimension dim of a document. Throws std::invalid_argument naming the key when
 // the document is not an object, lacks it, or holds no valid diagram under it.
 Diagram document_diagram(const nlohmann::json& document, int dim);
+
+// document_diagram of a document given as text. The shape writers produce (an object whose
+// values are plain: numbers, strings without escapes or non-ASCII bytes, literals, arrays and
+// objects of those) is read in one pass without a DOM; anything else, and every error, goes
+// through nlohmann::json::parse and document_diagram, so a bad document throws what they throw:
+// nlohmann::json::parse_error naming line and column, or std::invalid_argument naming the key.
+Diagram parse_document_diagram(std::string_view text, int dim);
 
 }  // namespace fnet

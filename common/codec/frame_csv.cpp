@@ -1,74 +1,73 @@
 #include "common/codec/frame_csv.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
-#include <fstream>
+#include <cstring>
+#include <numeric>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <utility>
+
+#include "common/codec/file_text.hpp"
 
 namespace fnet {
 namespace {
 
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// A field without the blanks around it (and the '\r' of a CRLF line end).
+std::string_view trimmed(const char* first, const char* last) {
+  while (first != last && is_space(*first)) ++first;
+  while (last != first && (is_space(last[-1]) || last[-1] == '\r')) --last;
+  return {first, static_cast<std::size_t>(last - first)};
+}
+
+bool is_blank(std::string_view line) {
+  return std::all_of(line.begin(), line.end(), [](char c) { return is_space(c) || c == '\r'; });
+}
+
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> out;
-  std::size_t start = 0;
+  const char* first = line.data();
+  const char* const end = line.data() + line.size();
   while (true) {
-    const std::size_t comma = line.find(',', start);
-    std::string_view field =
-        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
-    while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r'))
-      field.remove_suffix(1);
-    out.push_back(field);
-    if (comma == std::string_view::npos) return out;
-    start = comma + 1;
+    const char* comma = std::find(first, end, ',');
+    out.push_back(trimmed(first, comma));
+    if (comma == end) return out;
+    first = comma + 1;
   }
 }
 
-// Reads a CSV whose header must contain `names`; calls row(values) with the fields in that order.
-template <std::size_t K, class Row>
-void read_table(const std::filesystem::path& path, const std::array<std::string_view, K>& names, Row row) {
-  std::ifstream in(path);
-  if (!in) throw CsvError(path.string() + ": cannot open file");
-  std::string line;
-  std::size_t line_no = 0;
-  const auto fail = [&](const std::string& what) {
-    throw CsvError(path.string() + ":" + std::to_string(line_no) + ": " + what);
-  };
-  std::array<std::size_t, K> column{};
-  std::size_t width = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (split(line) == std::vector<std::string_view>{""}) continue;  // blank line
-    const auto header = split(line);
-    width = header.size();
-    for (std::size_t k = 0; k < K; ++k) {
-      std::size_t c = 0;
-      while (c < header.size() && header[c] != names[k]) ++c;
-      if (c == header.size()) {
-        std::string expected;
-        for (auto n : names) {
-          if (!expected.empty()) expected += ',';
-          expected.append(n);
-        }
-        fail("header lacks column '" + std::string(names[k]) + "' (expected " + expected + ")");
-      }
-      column[k] = c;
-    }
-    break;
+// The lines of a text as std::getline gives them: split at '\n', a last line without one counts,
+// and a final '\n' starts no empty line.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : next_(text.data()), end_(text.data() + text.size()) {}
+
+  bool next(std::string_view& line) {
+    if (next_ == end_) return false;
+    const auto* newline = static_cast<const char*>(std::memchr(next_, '\n', static_cast<std::size_t>(end_ - next_)));
+    const char* stop = newline ? newline : end_;
+    line = {next_, static_cast<std::size_t>(stop - next_)};
+    next_ = newline ? newline + 1 : end_;
+    ++number_;
+    return true;
   }
-  if (width == 0) fail("empty file: no header");
-  std::array<std::string_view, K> fields;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto cells = split(line);
-    if (cells.size() == 1 && cells[0].empty()) continue;
-    if (cells.size() != width)
-      fail("expected " + std::to_string(width) + " fields, found " + std::to_string(cells.size()));
-    for (std::size_t k = 0; k < K; ++k) fields[k] = cells[column[k]];
-    row(fields, fail, line_no);
+  std::size_t number() const { return number_; }
+  std::string_view rest() const { return {next_, static_cast<std::size_t>(end_ - next_)}; }
+  // Counts the line that ends at `stop` (its '\n', or the end of the text) as read.
+  void take_through(const char* stop) {
+    next_ = stop == end_ ? end_ : stop + 1;
+    ++number_;
   }
-}
+
+ private:
+  const char* next_;
+  const char* end_;
+  std::size_t number_ = 0;
+};
 
 template <class T, class Fail>
 T parse(std::string_view text, std::string_view column, Fail fail) {
@@ -86,44 +85,172 @@ T parse(std::string_view text, std::string_view column, Fail fail) {
   return value;
 }
 
+// The number at p, which p then passes; false if there is none.
+template <class V>
+bool take_number(const char*& p, const char* end, V& value) {
+  const auto [ptr, ec] = std::from_chars(p, end, value);
+  if (ec != std::errc() || ptr == p) return false;
+  p = ptr;
+  return true;
+}
+
+// take_number into the k-th of the values.
+template <class Tuple, std::size_t... I>
+bool take_value(std::size_t k, const char*& p, const char* end, Tuple& values, std::index_sequence<I...>) {
+  bool ok = false;
+  ((k == I && (ok = take_number(p, end, std::get<I>(values)))), ...);
+  return ok;
+}
+
+// A row as fnet writes it, at the start of text: every value a bare number, the fields split by
+// commas alone, parsed where they stand (from_chars finds each one's end, the last one's is the
+// line's). Returns where the line ends (its '\n' or the end of the text), or null at anything else
+// (blanks, a '+', a wrong count, a bad value): the caller then reads the line field by field,
+// which says what is wrong. Where this succeeds, that reading would give the same values.
+template <class... T>
+const char* read_plain_row(std::string_view text, const std::vector<std::size_t>& slot, std::tuple<T...>& values) {
+  const char* p = text.data();
+  const char* const end = text.data() + text.size();
+  const std::size_t width = slot.size();
+  for (std::size_t c = 0; c < width; ++c) {
+    if (slot[c] == sizeof...(T)) {
+      while (p != end && *p != ',' && *p != '\n') ++p;
+    } else if (!take_value(slot[c], p, end, values, std::index_sequence_for<T...>{})) {
+      return nullptr;
+    }
+    if (c + 1 < width) {
+      if (p == end || *p != ',') return nullptr;
+      ++p;
+    }
+  }
+  if (p != end && *p == '\r') ++p;
+  return p == end || *p == '\n' ? p : nullptr;
+}
+
+// Reads a CSV whose header must contain `names`; calls reserve(n) with an upper bound on the number
+// of rows, then row(values, line) with the values of those columns, of types T..., in that order.
+// One pass over the file held whole; a row costs no allocation.
+template <class... T, class Reserve, class Row>
+void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names,
+                Reserve reserve, Row row) {
+  constexpr std::size_t K = sizeof...(T);
+  const std::optional<FileText> file = FileText::read(path);
+  if (!file) throw CsvError(path.string() + ": cannot open file");
+  const std::string_view text = file->view();
+  Lines lines(text);
+  const auto fail = [&](const std::string& what) {
+    throw CsvError(path.string() + ":" + std::to_string(lines.number()) + ": " + what);
+  };
+  constexpr std::size_t kUnused = K;
+  std::vector<std::size_t> slot;  // per column of the file: which of `names` it holds, or kUnused
+  std::string_view line;
+  while (lines.next(line)) {
+    if (is_blank(line)) continue;
+    const auto header = split(line);
+    slot.assign(header.size(), kUnused);
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), names[k]) - header.begin());
+      if (c == header.size()) {
+        std::string expected;
+        for (auto n : names) {
+          if (!expected.empty()) expected += ',';
+          expected.append(n);
+        }
+        fail("header lacks column '" + std::string(names[k]) + "' (expected " + expected + ")");
+      }
+      if (slot[c] == kUnused) slot[c] = k;
+    }
+    break;
+  }
+  if (slot.empty()) fail("empty file: no header");
+  const std::size_t width = slot.size();
+  // Vectors sized once, from the length of the first row: growing them would copy at every
+  // doubling, and counting the lines first would cost a pass over the file.
+  const std::string_view rest = lines.rest();
+  reserve(rest.size() / (std::min(rest.find('\n'), rest.size()) + 1) + 1);
+  std::tuple<T...> values;
+  std::array<std::string_view, K> fields;
+  while (true) {
+    if (const char* stop = read_plain_row(lines.rest(), slot, values)) {
+      lines.take_through(stop);
+    } else {
+      if (!lines.next(line)) break;
+      const char* first = line.data();
+      const char* const end = line.data() + line.size();
+      std::size_t c = 0;
+      while (true) {
+        const char* comma = std::find(first, end, ',');
+        if (c < width && slot[c] != kUnused) fields[slot[c]] = trimmed(first, comma);
+        ++c;
+        if (comma == end) break;
+        first = comma + 1;
+      }
+      if (c != width) {
+        if (c == 1 && is_blank(line)) continue;
+        fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
+      }
+      [&]<std::size_t... I>(std::index_sequence<I...>) {
+        ((std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], names[I], fail)), ...);
+      }
+      (std::index_sequence_for<T...>{});
+    }
+    row(values, lines.number());
+  }
+}
+
 }  // namespace
 
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
   std::vector<Contact> out;
   static constexpr std::array<std::string_view, 4> names{"i", "j", "fn", "ft"};
-  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t) {
-    out.push_back({parse<std::int64_t>(f[0], "i", fail), parse<std::int64_t>(f[1], "j", fail),
-                   parse<double>(f[2], "fn", fail), parse<double>(f[3], "ft", fail)});
-  });
+  read_table<std::int64_t, std::int64_t, double, double>(
+      path, names, [&](std::size_t n) { out.reserve(n); },
+      [&](const auto& v, std::size_t) {
+        out.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+      });
   return out;
 }
 
 std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
-  struct Row {
-    std::int64_t id;
-    Particle particle;
-    std::size_t line;
-  };
-  std::vector<Row> rows;
+  // Rows land in the table in file order; their ids are kept only once one is out of order (the
+  // table then moves each row to its id). In order, as fnet writes them, ids 0..n-1 need no check.
+  std::vector<Particle> table;
+  std::vector<std::int64_t> ids;
+  std::vector<std::size_t> lines;
+  bool in_order = true;
   static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
-  read_table(path, names, [&](const auto& f, const auto& fail, std::size_t line) {
-    rows.push_back(
-        {parse<std::int64_t>(f[0], "id", fail),
-         Particle{parse<double>(f[1], "x", fail), parse<double>(f[2], "y", fail), parse<double>(f[3], "r", fail)},
-         line});
-  });
-  std::vector<Particle> out(rows.size());
-  std::vector<std::size_t> seen_at(rows.size(), 0);  // line of the row that gave each id
-  for (const Row& r : rows) {
-    const std::string where = path.string() + ":" + std::to_string(r.line) + ": ";
-    if (r.id < 0 || static_cast<std::size_t>(r.id) >= rows.size())
-      throw CsvError(where + "particle id " + std::to_string(r.id) + " out of range [0, " +
-                     std::to_string(rows.size()) + "): ids must be 0..n-1");
-    if (seen_at[r.id])
-      throw CsvError(where + "particle id " + std::to_string(r.id) + " appears twice (first on line " +
-                     std::to_string(seen_at[r.id]) + ")");
-    seen_at[r.id] = r.line;
-    out[r.id] = r.particle;
+  read_table<std::int64_t, double, double, double>(
+      path, names,
+      [&](std::size_t n) {
+        table.reserve(n);
+        lines.reserve(n);
+      },
+      [&](const auto& v, std::size_t line) {
+        const std::int64_t id = std::get<0>(v);
+        if (in_order && id != static_cast<std::int64_t>(table.size())) {
+          in_order = false;
+          ids.resize(table.size());
+          std::iota(ids.begin(), ids.end(), std::int64_t{0});
+        }
+        if (!in_order) ids.push_back(id);
+        table.push_back({std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+        lines.push_back(line);
+      });
+  if (in_order) return table;
+  std::vector<Particle> out(table.size());
+  std::vector<std::size_t> seen_at(table.size(), 0);  // line of the row that gave each id
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    const std::int64_t id = ids[k];
+    if (id < 0 || static_cast<std::size_t>(id) >= table.size() || seen_at[id]) {
+      const std::string where = path.string() + ":" + std::to_string(lines[k]) + ": ";
+      if (id < 0 || static_cast<std::size_t>(id) >= table.size())
+        throw CsvError(where + "particle id " + std::to_string(id) + " out of range [0, " +
+                       std::to_string(table.size()) + "): ids must be 0..n-1");
+      throw CsvError(where + "particle id " + std::to_string(id) + " appears twice (first on line " +
+                     std::to_string(seen_at[id]) + ")");
+    }
+    seen_at[id] = lines[k];
+    out[id] = table[k];
   }
   return out;
 }

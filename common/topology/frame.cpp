@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <sstream>
 #include <utility>
+
+#include "common/topology/radix_sort.hpp"
 
 namespace fnet {
 namespace {
@@ -55,8 +58,9 @@ void validate(const Frame& frame) {
   }
 
   const auto n = static_cast<std::int64_t>(frame.particle_count);
-  std::vector<std::pair<std::uint64_t, std::size_t>> pairs;  // (min<<32 | max, row)
-  pairs.reserve(frame.contacts.size());
+  // Pairs keyed lo * n + hi sort as (lo, hi) do; by (key, row), the radix sort build_network uses.
+  std::vector<KeyedRecord> pairs(frame.contacts.size()), scratch(frame.contacts.size());
+  std::uint64_t least = ~std::uint64_t{0}, greatest = 0;
   for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
     const Contact& c = frame.contacts[k];
     if (!std::isfinite(c.fn) || !std::isfinite(c.ft)) reject(frame, describe(c, k) + ": non-finite force");
@@ -65,13 +69,15 @@ void validate(const Frame& frame) {
     if (c.i == c.j) reject(frame, describe(c, k) + ": self-contact");
     const auto lo = static_cast<std::uint64_t>(std::min(c.i, c.j));
     const auto hi = static_cast<std::uint64_t>(std::max(c.i, c.j));
-    pairs.emplace_back(lo << 32 | hi, k);
+    pairs[k] = {lo * static_cast<std::uint64_t>(n) + hi, k};
+    least = std::min(least, pairs[k].key), greatest = std::max(greatest, pairs[k].key);
   }
-  std::sort(pairs.begin(), pairs.end());
-  for (std::size_t k = 1; k < pairs.size(); ++k) {
-    if (pairs[k].first != pairs[k - 1].first) continue;
-    const std::size_t first = std::min(pairs[k - 1].second, pairs[k].second);
-    const std::size_t second = std::max(pairs[k - 1].second, pairs[k].second);
+  if (pairs.empty()) return;
+  const std::span<const KeyedRecord> sorted = sort_keyed(pairs, scratch, least, greatest);
+  for (std::size_t k = 1; k < sorted.size(); ++k) {
+    if (sorted[k].key != sorted[k - 1].key) continue;
+    const std::size_t first = std::min(sorted[k - 1].tie, sorted[k].tie);
+    const std::size_t second = std::max(sorted[k - 1].tie, sorted[k].tie);
     reject(frame, describe(frame.contacts[second], second) + ": duplicate of contact " + std::to_string(first) +
                       " (same pair of particles)");
   }

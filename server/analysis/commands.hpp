@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -37,10 +38,17 @@ MetricChoice metric_option(const std::string& name, std::optional<double> q);
 void require_file(const std::string& what, const std::filesystem::path& path);
 void require_directory(const std::string& what, const std::filesystem::path& path);
 
+using Command = std::function<int(const std::vector<std::string>&)>;
+
+// Runs the command `name` with its arguments and returns the exit code: the command's own, 2 after
+// a usage error, 1 after any other, each with the message on stderr.
+int run_command(const std::string& name, const Command& command, const std::vector<std::string>& args);
+
 int diagram_command(const std::vector<std::string>& args);
-int store_command(const std::vector<std::string>& args);
-int publish_command(const std::vector<std::string>& args);
 int distance_command(const std::vector<std::string>& args);
 int explain_command(const std::vector<std::string>& args);
+// In fnet-analyze-io.
+int store_command(const std::vector<std::string>& args);
+int publish_command(const std::vector<std::string>& args);
 
 }  // namespace fnet::analyze

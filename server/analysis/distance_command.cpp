@@ -1,8 +1,8 @@
 // fnet-analyze distance: bottleneck or Wasserstein distance between the diagrams of two diagram documents.
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +12,7 @@
 #include "common/analysis/metric_vocabulary.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
+#include "common/codec/file_text.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "server/analysis/commands.hpp"
 
@@ -22,16 +23,12 @@ namespace fnet::analyze {
 namespace {
 
 Diagram read_diagram(const std::string& path, int dim) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open " + path);
-  nlohmann::json doc;
+  const std::optional<FileText> text = FileText::read(path);
+  if (!text) throw std::runtime_error("cannot open " + path);
   try {
-    doc = nlohmann::json::parse(in);
+    return parse_document_diagram(text->view(), dim);
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": not JSON: " + e.what());
-  }
-  try {
-    return document_diagram(doc, dim);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(path + ": " + e.what());
   }

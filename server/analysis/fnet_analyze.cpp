@@ -1,13 +1,17 @@
 // fnet-analyze: the offline front end of fnet's analysis.
-#include <algorithm>
-#include <exception>
-#include <functional>
+#include <malloc.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
+#include <sys/mman.h>
 #include <vector>
-
-#include <boost/program_options.hpp>
 
 #include "server/analysis/commands.hpp"
 
@@ -28,53 +32,50 @@ constexpr const char* kUsage =
     "exit codes: 0 ok, 1 the input could not be analyzed (malformed CSV or JSON, not an HDF5 run\n"
     "            file, an invalid frame), 2 bad usage (unknown option, bad value, missing file)\n";
 
+// store and publish need HDF5 and DDS, whose libraries (and theirs: TLS, Kerberos, LDAP...) take
+// several times longer to load than a 2 000-grain diagram takes to compute. They live in
+// fnet-analyze-io, installed next to this program, which runs them in its place.
+int run_in_io_binary(const std::string& name, char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path io = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "fnet-analyze-io";
+  std::string program = io.string();
+  argv[0] = program.data();
+  // Without /proc and started through PATH, argv[0] names no directory: look along PATH too.
+  (io.has_parent_path() ? execv : execvp)(program.c_str(), argv);
+  std::cerr << "fnet-analyze " << name << ": cannot run " << program << ": " << std::strerror(errno) << "\n";
+  return 1;
+}
+
+// A 40 000-grain frame touches ~11 MiB, ~2 800 fresh 4 KiB pages, each a page fault costing
+// microseconds on a virtual machine: more than the persistence. Large blocks come from the heap and
+// stay there (what one stage frees, the next reuses), and the heap, grown once by 64 MiB of address
+// space (untouched, so free), is offered transparent huge pages: 2 MiB per fault where the kernel
+// grants them. Only advice: without THP nothing changes.
+void prepare_heap() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  const auto start = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  mallopt(M_TOP_PAD, 64 << 20);
+  void* volatile block = std::malloc(1 << 20);  // volatile: a malloc freed unused may be elided
+  std::free(block);
+  mallopt(M_TOP_PAD, 128 << 10);  // glibc's default, for later growth
+  const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const std::uintptr_t first = (start + kHuge - 1) & ~(kHuge - 1), last = end & ~(kHuge - 1);
+  const auto failed = reinterpret_cast<std::uintptr_t>(reinterpret_cast<void*>(-1));  // sbrk's error
+  if (start != failed && end != failed && last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
 }  // namespace
 
-namespace fnet::analyze {
-
-std::optional<boost::program_options::variables_map> parse_options(
-    const boost::program_options::options_description& options, const std::vector<std::string>& args,
-    const boost::program_options::positional_options_description* positional) {
-  namespace po = boost::program_options;
-  po::variables_map vm;
-  auto parser = po::command_line_parser(args).options(options);
-  if (positional) parser.positional(*positional);
-  po::store(parser.run(), vm);
-  if (vm.count("help")) {
-    std::cout << options << "\n";
-    return std::nullopt;
-  }
-  po::notify(vm);
-  return vm;
-}
-
-MetricChoice metric_option(const std::string& name, std::optional<double> q) {
-  const bool known = std::find(kMetricNames.begin(), kMetricNames.end(), name) != kMetricNames.end();
-  // A known name fails only for its exponent.
-  return named_option(known ? "--q" : "--metric", [&] { return parse_metric(name, q); });
-}
-
-void require_file(const std::string& what, const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such file");
-  if (fs::is_directory(path))
-    throw boost::program_options::error(what + " " + path.string() + ": is a directory, not a file");
-}
-
-void require_directory(const std::string& what, const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such directory");
-  if (!fs::is_directory(path)) throw boost::program_options::error(what + " " + path.string() + ": not a directory");
-}
-
-}  // namespace fnet::analyze
-
 int main(int argc, char** argv) {
-  using Command = std::function<int(const std::vector<std::string>&)>;
-  const std::map<std::string, Command> commands = {
-      {"diagram", fnet::analyze::diagram_command}, {"distance", fnet::analyze::distance_command},
-      {"explain", fnet::analyze::explain_command}, {"store", fnet::analyze::store_command},
-      {"publish", fnet::analyze::publish_command},
+  prepare_heap();
+  const std::map<std::string, fnet::analyze::Command> commands = {
+      {"diagram", fnet::analyze::diagram_command},
+      {"distance", fnet::analyze::distance_command},
+      {"explain", fnet::analyze::explain_command},
   };
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
@@ -82,19 +83,12 @@ int main(int argc, char** argv) {
     return args.empty() ? 2 : 0;
   }
   const std::string name = args[0];
+  if (name == "store" || name == "publish") return run_in_io_binary(name, argv);
   args.erase(args.begin());
   const auto command = commands.find(name);
   if (command == commands.end()) {
     std::cerr << "fnet-analyze: unknown command '" << name << "'\n\n" << kUsage;
     return 2;
   }
-  try {
-    return command->second(args);
-  } catch (const boost::program_options::error& e) {
-    std::cerr << "fnet-analyze " << name << ": " << e.what() << " (see --help)\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "fnet-analyze " << name << ": " << e.what() << "\n";
-    return 1;
-  }
+  return fnet::analyze::run_command(name, command->second, args);
 }

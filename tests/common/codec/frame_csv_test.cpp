@@ -2,7 +2,16 @@
 // (every error names the file and, where a line is at fault, the line).
 #include "common/codec/frame_csv.hpp"
 
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <random>
 #include <string>
+#include <sys/stat.h>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -181,6 +190,132 @@ TEST(FrameCsv, ParticleIdOutOfRangeNamesFileAndLine) {
   const auto negative = dir.write("p2.csv", "id,x,y,r\n-1,1,2,0.5\n0,3,4,0.5\n");
   EXPECT_THAT(csv_error([&] { read_particles_csv(negative); }),
               AllOf(HasSubstr(negative.string()), HasSubstr("id -1"), HasSubstr(at(negative, 2))));
+}
+
+std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+template <class T>
+void put(std::string& out, T v) {
+  char buf[32];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+// Numbers written shortest (std::to_chars, as fnet-simd writes them) read back bit for bit: random
+// bit patterns (subnormals, huge, tiny), negative zero, -1, and everyday forces and coordinates.
+TEST(FrameCsv, EveryDoubleReadsBackBitForBit) {
+  std::mt19937_64 rng(77);
+  const auto any_double = [&] {
+    double v;
+    do v = std::bit_cast<double>(rng());
+    while (!std::isfinite(v));
+    return v;
+  };
+  std::uniform_real_distribution<double> everyday(-50.0, 50.0);
+  std::vector<Contact> contacts;
+  std::vector<Particle> particles;
+  const double special[] = {0.0,
+                            -0.0,
+                            -1.0,
+                            std::numeric_limits<double>::denorm_min(),
+                            std::numeric_limits<double>::min(),
+                            std::numeric_limits<double>::max(),
+                            -std::numeric_limits<double>::max(),
+                            1e-300};
+  for (std::int64_t k = 0; k < 5000; ++k) {
+    const auto value = [&](int salt) {
+      if (k < 8) return special[(k + salt) % 8];
+      return (k + salt) % 3 == 0 ? any_double() : everyday(rng);
+    };
+    contacts.push_back({k, k + 1 + static_cast<std::int64_t>(rng() % 1000), value(0), value(1)});
+    particles.push_back({value(2), value(3), value(4)});
+  }
+  std::string c_text = "i,j,fn,ft\n", p_text = "id,x,y,r\n";
+  for (const Contact& c : contacts) {
+    put(c_text, c.i), c_text += ',', put(c_text, c.j), c_text += ',', put(c_text, c.fn), c_text += ',';
+    put(c_text, c.ft), c_text += '\n';
+  }
+  for (std::size_t k = particles.size(); k-- > 0;) {  // rows in reverse: ids place them
+    const Particle& p = particles[k];
+    put(p_text, static_cast<std::int64_t>(k)), p_text += ',', put(p_text, p.x), p_text += ',', put(p_text, p.y);
+    p_text += ',', put(p_text, p.r), p_text += '\n';
+  }
+  TempDir dir;
+  const auto read_contacts = read_contacts_csv(dir.write("c.csv", c_text));
+  const auto read_particles = read_particles_csv(dir.write("p.csv", p_text));
+  ASSERT_EQ(read_contacts.size(), contacts.size());
+  ASSERT_EQ(read_particles.size(), particles.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    EXPECT_EQ(read_contacts[k].i, contacts[k].i);
+    EXPECT_EQ(read_contacts[k].j, contacts[k].j);
+    EXPECT_EQ(bits(read_contacts[k].fn), bits(contacts[k].fn)) << "row " << k;
+    EXPECT_EQ(bits(read_contacts[k].ft), bits(contacts[k].ft)) << "row " << k;
+    EXPECT_EQ(bits(read_particles[k].x), bits(particles[k].x)) << "particle " << k;
+    EXPECT_EQ(bits(read_particles[k].y), bits(particles[k].y)) << "particle " << k;
+    EXPECT_EQ(bits(read_particles[k].r), bits(particles[k].r)) << "particle " << k;
+  }
+}
+
+// Two numbers glued together are one field, not two, though each is a valid number on its own.
+TEST(FrameCsv, GluedNumbersAreOneField) {
+  TempDir dir;
+  const auto glued = dir.write("c.csv", "i,j,fn,ft\n0,1,2.5-0.5\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(glued); }),
+              AllOf(HasSubstr(at(glued, 2)), HasSubstr("expected 4 fields, found 3")));
+}
+
+// A file read whole need not be a regular file: a pipe, of unknown size, is read to its end.
+TEST(FrameCsv, ReadsFromAPipe) {
+  TempDir dir;
+  const auto fifo = dir.path() / "contacts.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string text = "i,j,fn,ft\n";
+  for (int k = 0; k < 3000; ++k) text += std::to_string(k) + "," + std::to_string(k + 1) + ",0.5,0.25\n";
+  std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << text; });
+  const auto contacts = read_contacts_csv(fifo);
+  writer.join();
+  ASSERT_EQ(contacts.size(), 3000u);
+  EXPECT_TRUE(same_contact(contacts[2999], {2999, 3000, 0.5, 0.25}));
+}
+
+// Blanks around fields, blank lines (also of spaces and tabs), a last line without its newline:
+// read as the line-by-line reader read them.
+TEST(FrameCsv, BlanksBlankLinesAndAMissingFinalNewlineWork) {
+  TempDir dir;
+  const auto contacts =
+      read_contacts_csv(dir.write("c.csv", "\n \t\r\n i , j,fn\t,ft \r\n\n  \n0 ,\t1, 1.5 ,0.25\r\n\t\n2,1,-0.125,3"));
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_TRUE(same_contact(contacts[0], {0, 1, 1.5, 0.25}));
+  EXPECT_TRUE(same_contact(contacts[1], {2, 1, -0.125, 3}));
+}
+
+// A file cut short: the last row has too few fields, or its last number is incomplete; the error
+// names the line (and the column when a value is at fault).
+TEST(FrameCsv, TruncatedFileNamesTheLastLine) {
+  TempDir dir;
+  const auto cut_row = dir.write("c.csv", "i,j,fn,ft\n0,1,1,1\n1,2,0.5,0.25\n2,3,1.");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(cut_row); }),
+              AllOf(HasSubstr(at(cut_row, 4)), HasSubstr("expected 4 fields, found 3")));
+  const auto cut_number = dir.write("p.csv", "id,x,y,r\n0,1,2,0.5\n1,3,4,0.5e");
+  EXPECT_THAT(csv_error([&] { read_particles_csv(cut_number); }),
+              AllOf(HasSubstr(at(cut_number, 3)), HasSubstr("'r'"), HasSubstr("'0.5e'")));
+  const auto cut_header = dir.write("h.csv", "i,j,f");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(cut_header); }),
+              AllOf(HasSubstr(at(cut_header, 1)), HasSubstr("'fn'")));
+}
+
+// Every column of a row is checked, the last one too, and a value's spaces do not hide garbage.
+TEST(FrameCsv, BadNumberInAnyColumnNamesLineAndColumn) {
+  TempDir dir;
+  const char* columns[] = {"i", "j", "fn", "ft"};
+  for (int c = 0; c < 4; ++c) {
+    std::string row[4] = {"0", "1", "2.5", "0.5"};
+    row[c] = c < 2 ? "1 2" : "2.5.1";
+    const auto file =
+        dir.write("c.csv", "i,j,fn,ft\n3,4,1,1\n" + row[0] + "," + row[1] + "," + row[2] + "," + row[3] + "\n");
+    EXPECT_THAT(csv_error([&] { read_contacts_csv(file); }),
+                AllOf(HasSubstr(at(file, 3)), HasSubstr(std::string("'") + columns[c] + "'"), HasSubstr(row[c])))
+        << columns[c];
+  }
 }
 
 }  // namespace

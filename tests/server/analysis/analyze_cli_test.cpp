@@ -85,6 +85,46 @@ TEST_F(AnalyzeCli, DistanceChecksItsOptionsWithTheSharedVocabulary) {
   EXPECT_EQ(out["dim"], 1);
 }
 
+// A document cut short or with a bad number is bad input: exit 1, the file and the place named.
+TEST_F(AnalyzeCli, DistanceNamesTheFileAndPlaceOfABrokenDocument) {
+  const auto a = write("a.json", R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1.5]]})");
+  const auto cut = write("cut.json", R"({"pd0":[],"pd1":[[1.0,0.8],[2.0,1)");
+  EXPECT_THAT(fails_with(1, {"distance", a.string(), cut.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(cut.string()), HasSubstr("not JSON"), HasSubstr("column 34")));
+  const auto bad = write("bad.json", "{\"pd0\":[],\n\"pd1\":[[1.0,0.8],[2.0,1.5.0]]}");
+  EXPECT_THAT(fails_with(1, {"distance", bad.string(), a.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(bad.string()), HasSubstr("line 2, column 26")));
+  const auto reversed = write("rev.json", R"({"pd1":[[1.0,0.8],[1.5,2.0]]})");
+  EXPECT_THAT(fails_with(1, {"distance", a.string(), reversed.string(), "--metric", "bottleneck"}),
+              AllOf(HasSubstr(reversed.string()), HasSubstr("pd1: point 1"), HasSubstr("birth 1.5 < death 2.0")));
+}
+
+// Loading HDF5 and DDS (and what they pull in) took several times longer than a 2 000-grain
+// diagram: fnet-analyze links neither, and runs fnet-analyze-io, from its own directory, for the
+// commands that need them.
+TEST_F(AnalyzeCli, DiagramAndDistanceLoadNoHdf5OrDdsLibrary) {
+  if (!std::filesystem::exists("/usr/bin/readelf")) GTEST_SKIP() << "no readelf";
+  const ProcessResult elf = run_process("/usr/bin/readelf", {"--dynamic", FNET_ANALYZE}, dir());
+  ASSERT_EQ(elf.exit_code, 0) << elf.err;
+  ASSERT_THAT(elf.out, HasSubstr("NEEDED"));
+  EXPECT_THAT(elf.out, AllOf(Not(HasSubstr("hdf5")), Not(HasSubstr("ddsc"))));
+
+  const ProcessResult store = analyze({"store", "--help"});
+  EXPECT_EQ(store.exit_code, 0) << store.err;
+  EXPECT_THAT(store.out, AllOf(HasSubstr("--run-file"), HasSubstr("--data-dir")));
+  EXPECT_THAT(fails_with(2, {"publish", "--no-such-flag"}),
+              AllOf(HasSubstr("fnet-analyze publish"), HasSubstr("no-such-flag")));
+
+  // A copy without fnet-analyze-io beside it says what is missing.
+  const auto alone = dir() / "fnet-analyze";
+  std::filesystem::copy_file(FNET_ANALYZE, alone);
+  const ProcessResult r = run_process(alone.string(), {"store", "--help"}, dir());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, AllOf(HasSubstr("cannot run"), HasSubstr((dir() / "fnet-analyze-io").string())));
+  const ProcessResult diagram = run_process(alone.string(), {"diagram", "--help"}, dir());
+  EXPECT_EQ(diagram.exit_code, 0) << "the other commands need nothing beside it";
+}
+
 TEST_F(AnalyzeCli, HelpNamesTheExitCodes) {
   const ProcessResult r = analyze({"--help"});
   EXPECT_EQ(r.exit_code, 0);
