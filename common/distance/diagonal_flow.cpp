@@ -502,12 +502,15 @@ void DiagonalFlow::solve(double accept_ratio) {
   // PD1 pairs exact solves take 4-15 rounds with three arcs added per violating row; past
   // kMaxRounds the complete graph finishes.
   constexpr std::size_t kMaxRounds = 24, kFewRows = 2;
-  // Where the staged solve is measured faster: up to a few thousand points a side (at 20 000 its
-  // rounds repair each row several times over: W1 35.9 s against 42.8 s, W2 201 s against 57 s),
-  // and the hot path's costs, q = 1 and 2 in unit 1 (other q are capped at ArcPower::kCap, and
-  // potentials near the cap leave the check's tolerance meaningless).
-  constexpr std::size_t kStagedMaxPoints = 8000;
-  if (n_ == 0 || m_ == 0 || !power_.is_plain() || (accept_ratio == 1 && n_ + m_ > 2 * kStagedMaxPoints)) {
+  // Where the staged solve is measured faster: W1 at every size (20 000 points of perturbed
+  // copies: 35.9 s against 191.5 s for the complete-graph searches alone), W2 up to a few
+  // thousand points a side (at 20 000 its rounds repair each row several times over: 201 s, and
+  // past kMaxRounds the complete graph still has to finish). Other q keep the complete graph:
+  // their costs are capped at ArcPower::kCap, and potentials near the cap leave the check's
+  // tolerance meaningless.
+  constexpr std::size_t kStagedMaxPointsW2 = 8000;
+  const bool staged = power_.is_identity() || (power_.is_plain() && n_ + m_ <= 2 * kStagedMaxPointsW2);
+  if (n_ == 0 || m_ == 0 || !staged) {
     solve_complete();
     return;
   }
