@@ -375,14 +375,15 @@ DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const Bot
   double lo = matcher.nearest_lower_bound(), hi = matcher.all_to_diagonal();
   // The matching whose bottleneck is hi: all to the diagonal until a better one is found.
   std::vector<std::int64_t> best(matching ? va.points.size() : 0, -1);
-  const auto found = [&] {
+  const auto found = [&](double r) {
     hi = matcher.value();
+    if (hi > r) throw std::logic_error("bottleneck: a matching found at a threshold exceeds it");
     if (matching) best = matcher.mates_of_a();
   };
   const double rel = params.relative_error;
   auto done = [&] { return hi <= lo || (rel > 0 && hi <= (1 + rel) * lo) || hi <= essential; };
   if (!done()) {
-    if (matcher.feasible(lo)) found();
+    if (matcher.feasible(lo)) found(lo);
   }
   // Invariant: lo is infeasible (or lo == hi), hi is the bottleneck of a matching found. The
   // answer is a candidate value (an input distance) in (lo, hi]: once few enough lie strictly
@@ -414,7 +415,7 @@ DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const Bot
       mid = std::bit_cast<double>(bits(lo) + (bits(hi) - bits(lo)) / 2);
     }
     if (matcher.feasible(mid))
-      found();
+      found(mid);
     else
       lo = mid;
   }
