@@ -80,14 +80,16 @@ class ThresholdMatcher {
 
   // Is there a matching with every pair at distance <= r covering every point with diagonal > r?
   bool feasible(double r) {
+    bool broke = false;
     for (std::size_t i = 0; i < a_.points.size(); ++i) {
       const std::int64_t j = a_.mate[i];
-      if (j >= 0 && linf_distance(a_.points[i], b_.points[j]) > r) a_.mate[i] = b_.mate[j] = -1;
+      if (j >= 0 && linf_distance(a_.points[i], b_.points[j]) > r) a_.mate[i] = b_.mate[j] = -1, broke = true;
     }
-    // From the matching of the last threshold, with a budget of visits: near the answer this is
-    // cheap, but the remains of a matching built for a threshold far above can need many long
-    // augmenting paths, and then the sweep from nothing is the better start.
-    budget_ = 2 * (a_.points.size() + b_.points.size()) + 1024;
+    // From the matching of the last threshold, with a budget of visits when some of its pairs
+    // broke: near the answer this is cheap, but the remains of a matching built for a threshold
+    // far above can need many long augmenting paths, and then the sweep from nothing is the
+    // better start.
+    budget_ = broke ? 2 * (a_.points.size() + b_.points.size()) + 1024 : std::numeric_limits<std::size_t>::max();
     Cover c = cover_both(r);
     if (c != Cover::out_of_budget) return c == Cover::covered;
     std::fill(a_.mate.begin(), a_.mate.end(), -1);
@@ -216,17 +218,20 @@ class ThresholdMatcher {
   enum class Local { augmented, no_path, gave_up };
 
   // Breadth-first alternating search from `root` alone, stopped at the first end (augmenting
-  // along it) or after visiting kLocalBudget points of o; `spent` counts the visits.
+  // along it) or after visiting kLocalBudget points of o (or four times the root's neighbours);
+  // `spent` counts the visits.
   Local local_search(Side& s, Side& o, std::uint32_t root, double r, std::size_t& spent) {
     constexpr std::size_t kLocalBudget = 2048;
     o.tree.restore_all();
     frontier_.assign(1, root);
-    std::size_t visited = 0;
+    std::size_t visited = 0, limit = kLocalBudget;
     for (std::size_t head = 0; head < frontier_.size(); ++head) {
+      // Dense threshold graphs: the budget grows with the root's own neighbourhood.
+      if (head == 1) limit = std::max(limit, 4 * visited);
       const std::uint32_t u = frontier_[head];
       for (std::int64_t v; (v = o.tree.take_within(s.points[u], r)) >= 0;) {
         ++spent;
-        if (++visited > kLocalBudget) return Local::gave_up;
+        if (++visited > limit && head > 0) return Local::gave_up;
         o.parent[v] = u;
         const std::int64_t w = o.mate[v];
         if (w >= 0 && s.diagonal[w] > r) {
