@@ -155,12 +155,11 @@ class ThresholdMatcher {
     }
   }
 
-  // Covers every forced point of s by Hopcroft-Karp phases on the 2-d trees (Efrat-Itai-Katz):
-  // a breadth-first search from all unmatched forced points of s at once layers the points of o
-  // by their distance from them, up to the first layer holding an end (an unmatched point of o,
-  // or one whose mate in s may go to the diagonal and is released); then one 2-d tree per layer,
-  // with deletion, lets depth-first searches find vertex-disjoint shortest augmenting paths, as
-  // many as the layers hold. A search that finds no end proves no augmenting path: infeasible.
+  // Covering every forced point of s: bounded single-root searches, then Hopcroft-Karp phases on
+  // the 2-d trees (Efrat-Itai-Katz, as in Hera), each phase labelled backwards from the ends (an
+  // unmatched point of o, or one whose mate in s may go to the diagonal and is released) so that
+  // roots at every distance augment along vertex-disjoint shortest paths in one phase. A root no
+  // end reaches proves the threshold infeasible. out_of_budget: the visits allowed ran out.
   enum class Cover { covered, infeasible, out_of_budget };
 
   Cover cover_both(double r) {
