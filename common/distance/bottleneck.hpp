@@ -17,11 +17,14 @@ struct BottleneckParams {
 };
 
 // The answer is the smallest r at which a matching covers every point farther than r from the
-// diagonal using pairs at distance <= r. Each test of r is a warm-started augmenting-path search
-// on 2-d trees with deletion (Efrat-Itai-Katz, as in Hera); r is bisected over the bit patterns of
-// doubles and snapped down to the value of each matching found, so the result is an exact input
-// distance after at most 64 tests, with no tolerance anywhere (hence exactly scale-invariant
-// under multiplication by powers of two, and to rounding otherwise).
+// diagonal using pairs at distance <= r; it is a candidate value (a pair's distance or a point's
+// diagonal distance). Each test of r starts from the matching of the last test (or a sorted sweep
+// of the line death = 0) and augments by Hopcroft-Karp phases on 2-d trees with deletion
+// (Efrat-Itai-Katz, as in Hera). r is bisected over the bit patterns of doubles until few
+// candidates remain in the bracket, then over those candidates, and snapped down to the value of
+// each matching found, so the result is an exact input distance with no tolerance anywhere
+// (hence exactly scale-invariant under multiplication by powers of two, and to rounding
+// otherwise).
 //
 // matching (optional): receives a matching whose longest term is the value exactly (with a
 // relative error, the matching whose bottleneck is the value returned); its `longest` is an

@@ -120,6 +120,26 @@ void LinfKdTree::nearest(PlanePoint q, std::size_t k, std::vector<std::uint32_t>
   for (const Best& b : best) out.push_back(b.p);
 }
 
+double LinfKdTree::nearest_distance(PlanePoint q, double cap, double floor) const {
+  double best = cap;
+  if (nodes_.empty()) return best;
+  const_stack_.clear();
+  const_stack_.push_back(0);
+  while (!const_stack_.empty() && best > floor) {
+    const Node& node = nodes_[const_stack_.back()];
+    const_stack_.pop_back();
+    if (box_distance(node, q) >= best) continue;
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) best = std::min(best, linf_distance(points_[order_[s]], q));
+      continue;
+    }
+    const double dl = box_distance(nodes_[node.left], q), dr = box_distance(nodes_[node.right], q);
+    const_stack_.push_back(dl <= dr ? node.right : node.left);
+    const_stack_.push_back(dl <= dr ? node.left : node.right);
+  }
+  return best;
+}
+
 std::int64_t LinfKdTree::take_within(PlanePoint q, double r) {
   if (nodes_.empty()) return -1;
   stack_.clear();
@@ -143,6 +163,90 @@ std::int64_t LinfKdTree::take_within(PlanePoint q, double r) {
     stack_.push_back(node.left);
   }
   return -1;
+}
+
+std::int64_t LinfKdTree::take_nearest_within(PlanePoint q, double r) {
+  if (nodes_.empty()) return -1;
+  // Depth first, nearer child first, pruned by the best so far.
+  std::int64_t best = -1;
+  double best_d = r;
+  stack_.clear();
+  stack_.push_back(0);
+  while (!stack_.empty()) {
+    const std::int32_t id = stack_.back();
+    stack_.pop_back();
+    const Node& node = nodes_[id];
+    if (alive_[id] == 0 || box_distance(node, q) > best_d) continue;
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t p = order_[s];
+        if (erased_[p]) continue;
+        const double d = linf_distance(points_[p], q);
+        if (d < best_d || (d == best_d && best < 0)) best_d = d, best = p;
+      }
+      continue;
+    }
+    const double dl = box_distance(nodes_[node.left], q), dr = box_distance(nodes_[node.right], q);
+    stack_.push_back(dl <= dr ? node.right : node.left);
+    stack_.push_back(dl <= dr ? node.left : node.right);
+  }
+  if (best >= 0) erase(static_cast<std::uint32_t>(best));
+  return best;
+}
+
+std::int64_t LinfKdTree::take_rightmost_within(PlanePoint q, double r, bool same_y) {
+  if (nodes_.empty()) return -1;
+  std::int64_t best = -1;
+  double best_x = 0;
+  stack_.clear();
+  stack_.push_back(0);
+  while (!stack_.empty()) {
+    const std::int32_t id = stack_.back();
+    stack_.pop_back();
+    const Node& node = nodes_[id];
+    if (alive_[id] == 0 || box_distance(node, q) > r || (best >= 0 && node.xmax <= best_x)) continue;
+    if (same_y && (q.y < node.ymin || q.y > node.ymax)) continue;
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const std::uint32_t p = order_[s];
+        if (erased_[p] || linf_distance(points_[p], q) > r || (same_y && points_[p].y != q.y)) continue;
+        if (best < 0 || points_[p].x > best_x) best_x = points_[p].x, best = p;
+      }
+      continue;
+    }
+    const bool right_first = nodes_[node.right].xmax >= nodes_[node.left].xmax;
+    stack_.push_back(right_first ? node.left : node.right);
+    stack_.push_back(right_first ? node.right : node.left);
+  }
+  if (best >= 0) erase(static_cast<std::uint32_t>(best));
+  return best;
+}
+
+namespace {
+// The largest L-infinity distance from q to a point of the box.
+double box_far(const LinfKdTree::Node& node, PlanePoint q) {
+  return std::max({q.x - node.xmin, node.xmax - q.x, q.y - node.ymin, node.ymax - q.y});
+}
+}  // namespace
+
+void LinfKdTree::distances_between(PlanePoint q, double lo, double hi, std::vector<double>& out) const {
+  if (nodes_.empty()) return;
+  const_stack_.clear();
+  const_stack_.push_back(0);
+  while (!const_stack_.empty()) {
+    const Node& node = nodes_[const_stack_.back()];
+    const_stack_.pop_back();
+    if (box_distance(node, q) >= hi || box_far(node, q) <= lo) continue;
+    if (node.left < 0) {
+      for (std::uint32_t s = node.begin; s < node.end; ++s) {
+        const double d = linf_distance(points_[order_[s]], q);
+        if (d > lo && d < hi) out.push_back(d);
+      }
+      continue;
+    }
+    const_stack_.push_back(node.right);
+    const_stack_.push_back(node.left);
+  }
 }
 
 void LinfKdTree::erase(std::uint32_t point) {

@@ -39,11 +39,24 @@ class LinfKdTree {
   void nearest(PlanePoint q, std::size_t k, std::vector<std::uint32_t>& out, std::uint64_t salt) const;
   void nearest(PlanePoint q, std::size_t k, std::vector<std::uint32_t>& out) const { nearest(q, k, out, 0); }
 
+  // min(cap, the distance from q to its nearest point), erased points included; the search may
+  // stop early at any value <= floor once one is found (then it returns that value).
+  double nearest_distance(PlanePoint q, double cap, double floor) const;
+
   // Deletion layer: erase() hides a point from take_within(); restore_all() brings every erased point back.
   // take_within() returns an unerased point at distance <= r and erases it, or -1.
   std::int64_t take_within(PlanePoint q, double r);
+  // The nearest unerased point at distance <= r (any of equals), erased; -1 if none.
+  std::int64_t take_nearest_within(PlanePoint q, double r);
+  // The unerased point at distance <= r with the largest x (any of equals), erased; -1 if none.
+  // same_y: only among points with y == q.y.
+  std::int64_t take_rightmost_within(PlanePoint q, double r, bool same_y = false);
   void erase(std::uint32_t point);
   void restore_all();
+  bool is_present(std::uint32_t point) const { return !erased_[point]; }
+
+  // Over all points, erased or not: the distances d with lo < d < hi, appended to `out`.
+  void distances_between(PlanePoint q, double lo, double hi, std::vector<double>& out) const;
 
  private:
   std::int32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent, int depth);
@@ -57,6 +70,7 @@ class LinfKdTree {
   std::vector<std::uint8_t> erased_;   // per point
   std::vector<std::uint32_t> erased_list_;
   std::vector<std::int32_t> stack_;
+  mutable std::vector<std::int32_t> const_stack_;
 };
 
 }  // namespace fnet
