@@ -502,14 +502,18 @@ void DiagonalFlow::solve(double accept_ratio) {
   // PD1 pairs exact solves take 4-15 rounds with three arcs added per violating row; past
   // kMaxRounds the complete graph finishes.
   constexpr std::size_t kMaxRounds = 24, kFewRows = 2;
-  // Where the staged solve is measured faster: W1 at every size (20 000 points of perturbed
-  // copies: 35.9 s against 191.5 s for the complete-graph searches alone), W2 up to a few
-  // thousand points a side (at 20 000 its rounds repair each row several times over: 201 s, and
-  // past kMaxRounds the complete graph still has to finish). Other q keep the complete graph:
-  // their costs are capped at ArcPower::kCap, and potentials near the cap leave the check's
-  // tolerance meaningless.
-  constexpr std::size_t kStagedMaxPointsW2 = 8000;
-  const bool staged = power_.is_identity() || (power_.is_plain() && n_ + m_ <= 2 * kStagedMaxPointsW2);
+  // Where the staged solve is measured faster: W1 and W2 up to a few thousand points a side; above
+  // that W1 only when most points lie on the common death line, where the sorted-birth programme
+  // finds the alignment (20 000 points of jittered copies of a LAMMPS PD1: 35.9 s against 191.5 s
+  // for the complete-graph searches alone; the 50 000-point random pair of large_inputs_test:
+  // 108 s against 23 s, so not there). W2 at 20 000 repairs each row several times over (201 s)
+  // and still ends on the complete graph. Other q keep the complete graph: their costs are capped
+  // at ArcPower::kCap, and potentials near the cap leave the check's tolerance meaningless.
+  constexpr std::size_t kStagedMaxPoints = 8000;
+  constexpr double kLineShare = 0.5;
+  const bool small = n_ + m_ <= 2 * kStagedMaxPoints;
+  const bool staged = power_.is_plain() &&
+                      (small || (power_.is_identity() && share_on_common_line(pa_, tree_b_->points()) >= kLineShare));
   if (n_ == 0 || m_ == 0 || !staged) {
     solve_complete();
     return;

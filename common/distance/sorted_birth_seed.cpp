@@ -35,6 +35,15 @@ double common_death(std::span<const PlanePoint> a, std::span<const PlanePoint> b
 enum Step : std::uint8_t { kPair, kDeleteA, kDeleteB, kOutside };
 }  // namespace
 
+double share_on_common_line(std::span<const PlanePoint> a, std::span<const PlanePoint> b) {
+  if (a.empty() && b.empty()) return 0;
+  const double line = common_death(a, b);
+  std::size_t on = 0;
+  for (const auto* side : {&a, &b})
+    for (const PlanePoint p : *side) on += p.y == line;
+  return static_cast<double>(on) / static_cast<double>(a.size() + b.size());
+}
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
     std::span<const PlanePoint> a, std::span<const PlanePoint> b, std::span<const double> da,
     std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,

@@ -74,6 +74,19 @@ TEST(DistanceSparseStage, SortedBirthCandidatesOfEmptyAndOffLineInputs) {
   }
 }
 
+// What decides the staged solve above 8 000 points a side: the share of points on the line most
+// of them share.
+TEST(DistanceSparseStage, ShareOnTheCommonLine) {
+  const std::vector<PlanePoint> none, line{{1, 0}, {2, 0}, {3, 0}}, off{{1, 0.5}, {2, 0.25}, {4, 0}};
+  EXPECT_EQ(share_on_common_line(none, none), 0.0);
+  EXPECT_EQ(share_on_common_line(line, none), 1.0);
+  EXPECT_EQ(share_on_common_line(line, off), 4.0 / 6.0);
+  EXPECT_EQ(share_on_common_line(off, off), 2.0 / 6.0);  // every death value twice: the smallest wins ties
+  std::mt19937_64 rng(1103);
+  const std::vector<PlanePoint> random = plane(random_diagram(rng, 2000, 4, false));
+  EXPECT_LT(share_on_common_line(random, random), 0.5);
+}
+
 // The staged solve against the complete-graph searches alone, on pairs where the nearest
 // neighbours are wrong (a whole diagram scaled, as when the mean force moves), so that the
 // certification rounds must repair rows; both end at the same optimum, certified.
