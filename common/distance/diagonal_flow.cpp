@@ -172,20 +172,26 @@ double DiagonalFlow::cost(std::uint32_t i, std::uint32_t j) const {
   return power_(linf_distance(pa_[i], tree_b_->points()[j]));
 }
 
-double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
+double DiagonalFlow::box_price_bound(std::uint32_t i, std::int32_t node) const {
   const auto& box = tree_b_->nodes()[node];
-  if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
   const double c = power_(tree_b_->box_distance(box, pa_[i]));
   if (!(c < da_[i] + box_db_[node])) return kInf;  // no arc into the box beats the diagonal
   const BoxMax& m = box_max_[node];
-  double bound = c + pi_[i] - m.pi;
+  double bound = c - m.pi;
   if (power_.is_identity()) {
     // c_ij >= |x_i - x_j| and >= |y_i - y_j|: bounds that follow potentials sloping across the box.
     const PlanePoint a = pa_[i];
-    bound = std::max(
-        {bound, pi_[i] - a.x - m.minus_x, pi_[i] + a.x - m.plus_x, pi_[i] - a.y - m.minus_y, pi_[i] + a.y - m.plus_y});
+    bound = std::max({bound, -a.x - m.minus_x, a.x - m.plus_x, -a.y - m.minus_y, a.y - m.plus_y});
   }
-  return dist_[i] + std::max(0.0, bound);
+  return bound;
+}
+
+double DiagonalFlow::box_key(std::uint32_t i, std::int32_t node) const {
+  const auto& box = tree_b_->nodes()[node];
+  if (box_run_[node] == run_ && box_done_[node] == box.end - box.begin) return kInf;  // all settled
+  const double bound = box_price_bound(i, node);
+  if (bound == kInf) return kInf;
+  return dist_[i] + std::max(0.0, bound + pi_[i]);
 }
 
 void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
@@ -504,7 +510,7 @@ void DiagonalFlow::solve(double accept_ratio) {
   constexpr std::size_t kMaxRounds = 24, kFewRows = 2;
   // Where the staged solve is measured faster: W1 and W2 up to a few thousand points a side; above
   // that W1 only when most points lie on the common death line, where the sorted-birth programme
-  // finds the alignment (20 000 points of jittered copies of a LAMMPS PD1: 35.9 s against 191.5 s
+  // finds the alignment (a one-off run on 20 000 jittered copies of a LAMMPS PD1: 35.9 s against 191.5 s
   // for the complete-graph searches alone; the 50 000-point random pair of large_inputs_test:
   // 108 s against 23 s, so not there). W2 at 20 000 repairs each row several times over (201 s)
   // and still ends on the complete graph. Other q keep the complete graph: their costs are capped
@@ -530,7 +536,6 @@ void DiagonalFlow::solve(double accept_ratio) {
     // pair_penalty_ now counts every violation: dual_bound() is a valid lower bound.
     if (accept_ratio > 1 && dual_bound() > 0 && primal_cost() <= accept_ratio * dual_bound()) break;
     if (rounds_ > kMaxRounds || violations_.size() <= kFewRows) {
-      sparse_ = false;
       repair_violations();
       pair_penalty_ = 0;
       solve_complete();
@@ -549,44 +554,21 @@ void DiagonalFlow::build_candidates() {
   constexpr std::size_t kNearest = 4;  // includes the row reduction's choices
   std::vector<std::pair<std::uint32_t, std::uint32_t>> arcs = sorted_birth_candidates(
       pa_, tree_b_->points(), da_, db_, [this](std::uint32_t i, std::uint32_t j) { return cost(i, j); });
-  std::vector<std::uint32_t> near;
-  for (std::uint32_t i = 0; i < n_; ++i) {
-    tree_b_->nearest(pa_[i], kNearest, near, i);
-    for (const std::uint32_t j : near) arcs.push_back({i, j});
-  }
+  // Each point's nearest neighbours on the other side, that side brought to scale f first.
   const auto points_b = tree_b_->points();
-  for (std::uint32_t j = 0; j < m_; ++j) {
-    tree_a_->nearest(points_b[j], kNearest, near, j);
-    for (const std::uint32_t i : near) arcs.push_back({i, j});
-  }
-  {
-    // The scale between the two diagrams (the network's forces are in units of their mean, which
-    // moves from frame to frame): the median ratio of births at equal quantiles.
-    std::vector<double> xa, xb;
-    for (const PlanePoint p : pa_) xa.push_back(p.x);
-    for (const PlanePoint p : points_b) xb.push_back(p.x);
-    std::sort(xa.begin(), xa.end());
-    std::sort(xb.begin(), xb.end());
-    std::vector<double> ratios;
-    for (std::size_t k = xa.size() / 10; k < xa.size() * 9 / 10; ++k) {
-      const double y = xb[k * xb.size() / xa.size()];
-      if (xa[k] != 0) ratios.push_back(y / xa[k]);
+  std::vector<std::uint32_t> near;
+  const auto add_nearest = [&](double f) {
+    for (std::uint32_t i = 0; i < n_; ++i) {
+      tree_b_->nearest({pa_[i].x * f, pa_[i].y * f}, kNearest, near, i);
+      for (const std::uint32_t j : near) arcs.push_back({i, j});
     }
-    if (!ratios.empty()) {
-      std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-      const double f = ratios[ratios.size() / 2];
-      if (f > 0 && std::isfinite(f) && f != 1) {
-        for (std::uint32_t i = 0; i < n_; ++i) {
-          tree_b_->nearest({pa_[i].x * f, pa_[i].y * f}, kNearest, near, i);
-          for (const std::uint32_t j : near) arcs.push_back({i, j});
-        }
-        for (std::uint32_t j = 0; j < m_; ++j) {
-          tree_a_->nearest({points_b[j].x / f, points_b[j].y / f}, kNearest, near, j);
-          for (const std::uint32_t i : near) arcs.push_back({i, j});
-        }
-      }
+    for (std::uint32_t j = 0; j < m_; ++j) {
+      tree_a_->nearest({points_b[j].x / f, points_b[j].y / f}, kNearest, near, j);
+      for (const std::uint32_t i : near) arcs.push_back({i, j});
     }
-  }
+  };
+  add_nearest(1);
+  if (const double f = quantile_scale(pa_, points_b); f != 1) add_nearest(f);
   cand_start_.assign(n_ + 1, 0);
   cand_.clear();
   add_candidates(arcs);
@@ -636,13 +618,7 @@ void DiagonalFlow::check_pairs() {
       const std::int32_t k = box_stack_.back();
       box_stack_.pop_back();
       const auto& box = nodes[k];
-      const double c = power_(tree_b_->box_distance(box, a));
-      if (!(c < da_[i] + box_db_[k])) continue;
-      const BoxMax& mx = box_max_[k];
-      double bound = c - mx.pi;
-      if (power_.is_identity())
-        bound = std::max({bound, -a.x - mx.minus_x, a.x - mx.plus_x, -a.y - mx.minus_y, a.y - mx.plus_y});
-      if (!(bound < threshold())) continue;
+      if (!(box_price_bound(i, k) < threshold())) continue;
       if (box.left >= 0) {
         // Nearer child last: popped first, it lowers the threshold sooner.
         const double dl = tree_b_->box_distance(nodes[box.left], a), dr = tree_b_->box_distance(nodes[box.right], a);

@@ -101,11 +101,6 @@ class DiagonalFlow {
   std::size_t repaired_rows() const { return repaired_; }      // rows freed by a violated arc
   std::size_t candidate_arcs() const { return cand_.size(); }  // pair arcs the sparse searches scan
   bool finished_on_complete_graph() const { return completed_; }
-  std::span<const std::uint32_t> candidates_of(std::uint32_t i) const {
-    return cand_start_.empty()
-               ? std::span<const std::uint32_t>{}
-               : std::span<const std::uint32_t>(cand_).subspan(cand_start_[i], cand_start_[i + 1] - cand_start_[i]);
-  }
 
  private:
   // Nodes: a_0..a_{n-1}, then b_0..b_{m-1}, then the hubs HA and HB.
@@ -144,6 +139,9 @@ class DiagonalFlow {
   void refresh(std::uint32_t node);
   bool is_sink(std::uint32_t v) const;
   double cost(std::uint32_t i, std::uint32_t j) const;
+  // A lower bound on c_ij - pi(b_j) over the pair arcs from a_i into the box (+inf: none beats
+  // the diagonal); the searches' box keys and the certificate's pruning both use it.
+  double box_price_bound(std::uint32_t i, std::int32_t node) const;
   double box_key(std::uint32_t i, std::int32_t node) const;
   void open_box(std::uint32_t i, std::int32_t node);
   void update_box_maxima(std::uint32_t j);

@@ -1,6 +1,7 @@
 #include "common/distance/sorted_birth_seed.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <numeric>
@@ -34,6 +35,24 @@ double common_death(std::span<const PlanePoint> a, std::span<const PlanePoint> b
 }
 enum Step : std::uint8_t { kPair, kDeleteA, kDeleteB, kOutside };
 }  // namespace
+
+double quantile_scale(std::span<const PlanePoint> a, std::span<const PlanePoint> b) {
+  if (a.empty() || b.empty()) return 1;
+  std::vector<double> xa, xb;
+  for (const PlanePoint p : a) xa.push_back(p.x);
+  for (const PlanePoint p : b) xb.push_back(p.x);
+  std::sort(xa.begin(), xa.end());
+  std::sort(xb.begin(), xb.end());
+  std::vector<double> ratios;
+  for (std::size_t k = xa.size() / 10; k < xa.size() * 9 / 10; ++k) {
+    const double y = xb[k * xb.size() / xa.size()];
+    if (xa[k] != 0) ratios.push_back(y / xa[k]);
+  }
+  if (ratios.empty()) return 1;
+  std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2), ratios.end());
+  const double f = ratios[ratios.size() / 2];
+  return f > 0 && std::isfinite(f) ? f : 1;
+}
 
 double share_on_common_line(std::span<const PlanePoint> a, std::span<const PlanePoint> b) {
   if (a.empty() && b.empty()) return 0;

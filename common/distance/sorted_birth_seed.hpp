@@ -27,6 +27,10 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
     std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,
     std::uint32_t half_width = 32);
 
+// The scale between two diagrams (forces are in units of their frame's mean, which moves from
+// frame to frame): the median ratio of births at equal quantiles, 1 when there is none.
+double quantile_scale(std::span<const PlanePoint> a, std::span<const PlanePoint> b);
+
 // The share of all points of a and b lying on the line death = y that most of them share: what
 // the programme can order (floor PD1s of force networks: ~0.9; random diagrams: little).
 double share_on_common_line(std::span<const PlanePoint> a, std::span<const PlanePoint> b);

@@ -87,6 +87,17 @@ TEST(DistanceSparseStage, ShareOnTheCommonLine) {
   EXPECT_LT(share_on_common_line(random, random), 0.5);
 }
 
+TEST(DistanceSparseStage, QuantileScaleFindsTheFactorBetweenCopies) {
+  std::mt19937_64 rng(1104);
+  const std::vector<PlanePoint> a = line_points(rng, 500, 3), none;
+  std::vector<PlanePoint> b;
+  for (const PlanePoint p : a) b.push_back({p.x * 1.25, p.y * 1.25});  // exact in binary
+  EXPECT_EQ(quantile_scale(a, b), 1.25);
+  EXPECT_EQ(quantile_scale(b, a), 0.8);
+  EXPECT_EQ(quantile_scale(a, none), 1.0);
+  EXPECT_EQ(quantile_scale(none, a), 1.0);
+}
+
 // The staged solve against the complete-graph searches alone, on pairs where the nearest
 // neighbours are wrong (a whole diagram scaled, as when the mean force moves), so that the
 // certification rounds must repair rows; both end at the same optimum, certified.
