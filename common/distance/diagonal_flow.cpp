@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include "common/distance/sorted_birth_seed.hpp"
@@ -71,10 +72,11 @@ DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlaneP
   }
   box_done_.assign(nodes.size(), 0);
   for (std::size_t k = nodes.size(); k-- > 0;) recompute_box(static_cast<std::int32_t>(k));
-  greedy_start();
+  tree_a_ = std::make_unique<LinfKdTree>(pa_);
 }
 
 void DiagonalFlow::greedy_start() {
+  started_ = true;
   // Row reduction: with pi(b) = pi(HA) = pi(HB) = 0, pi(a_i) = -(its cheapest way out) keeps every
   // reduced cost >= 0, and a_i's cheapest arc is tight: take it when its head is still free (the
   // diagonal always is). Consecutive frames' diagrams are close, so most rows are settled here.
@@ -98,7 +100,6 @@ void DiagonalFlow::greedy_start() {
   // Column step for the b_j still free: pi(b_j) = min(db_j, min_i c_ij + pi(a_i)) keeps every arc
   // into b_j feasible; when the diagonal attains it, b_j is fed from the diagonal (tight). Without
   // this the diagonal's supply is routed last, each unit by a search over most of the graph.
-  tree_a_ = std::make_unique<LinfKdTree>(pa_);
   const LinfKdTree& tree_a = *tree_a_;
   const auto nodes = tree_a.nodes();
   const auto order = tree_a.order();
@@ -135,6 +136,146 @@ void DiagonalFlow::greedy_start() {
   }
   for (std::uint32_t j = 0; j < m_; ++j) refresh(node_of_b(j));
   recompute_all_boxes();
+}
+
+void DiagonalFlow::reset_flow() {
+  std::fill(mate_a_.begin(), mate_a_.end(), kNone);
+  std::fill(mate_b_.begin(), mate_b_.end(), kNone);
+  std::fill(mate_cost_a_.begin(), mate_cost_a_.end(), 0.0);
+  std::fill(pi_.begin(), pi_.end(), 0.0);
+  flow_hub_ = b_from_diagonal_ = a_to_diagonal_ = 0;
+  for (std::uint32_t v = 0; v < n_ + m_; ++v) refresh(v);
+}
+
+bool DiagonalFlow::line_start(const LineAlignment& alignment) {
+  // The programme's optimal matching of the line's points as the flow (a pair that costs more than
+  // sending both to the diagonal sends both there), the off-line points left free.
+  reset_flow();
+  sweep_order_.clear();
+  for (const LineAlignment::Move move : alignment.moves) {
+    if (move.step == LineAlignment::Step::pair) {
+      const std::uint32_t i = alignment.order_a[move.rank_a], j = alignment.order_b[move.rank_b];
+      const double c = cost(i, j);
+      if (c < da_[i] + db_[j]) {
+        mate_a_[i] = j, mate_b_[j] = i, mate_cost_a_[i] = c, ++flow_hub_;
+        continue;
+      }
+      mate_a_[i] = kDiagonal, ++a_to_diagonal_;
+      mate_b_[j] = kDiagonal, ++b_from_diagonal_;
+    } else if (move.step == LineAlignment::Step::delete_a) {
+      mate_a_[alignment.order_a[move.rank_a]] = kDiagonal, ++a_to_diagonal_;
+    } else {
+      mate_b_[alignment.order_b[move.rank_b]] = kDiagonal, ++b_from_diagonal_;
+    }
+  }
+  // Each pair routes one unit of the diagonal's supply straight to its demand (HA -> HB).
+  // That flow is optimal for the line's points alone (the off-line points are free: they close no
+  // cycle), so its residual graph has no negative cycle, and distances in it are potentials that
+  // certify it: computed on the candidates, then checked over every pair; arcs found violated join
+  // the candidates and the distances come down along them. A band that cut the programme's
+  // optimum off shows as a negative cycle: the sweeps' limit ends the attempt.
+  started_ = true;
+  if (lower_potentials() && lower_until_certified()) {
+    for (std::uint32_t v = 0; v < n_ + m_; ++v) refresh(v);
+    return true;
+  }
+  reset_flow();
+  started_ = false;
+  return false;
+}
+
+bool DiagonalFlow::lower_until_certified() {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> extra;
+  for (std::size_t round = 0;; ++round) {
+    recompute_all_boxes();
+    check_pairs();
+    ++rounds_;
+    if (violations_.empty()) return true;
+    if (round == kLineRounds) return false;
+    extra.clear();
+    for (const Violation& v : violations_) extra.push_back({v.row, v.column});
+    add_candidates(extra);
+    violations_.clear();
+    if (!lower_potentials()) return false;
+  }
+}
+
+bool DiagonalFlow::lower_potentials() {
+  // Label-correcting over the residual arcs of the current flow on the candidate graph, potentials
+  // as labels: on return pi(v) <= pi(u) + c_uv on every such arc, which is what the searches need.
+  // From pi = 0 (the first call) these are the shortest distances from a virtual root joined to
+  // every node at cost 0. Sweeps in birth order, alternately up and down, each relaxing every node's arcs: on a
+  // line, shortest paths run mostly one way, so a few sweeps settle them. A flow that is not
+  // optimal on the candidates has a negative cycle: the sweep limit ends the attempt.
+  if (sweep_order_.empty()) {
+    // Units in birth order: a matched pair (b_j, then its mate a_i, at their midpoint) or a lone
+    // node, so that a path a -> b_j -> mate -> ... is relaxed in one sweep whichever lies left.
+    const auto points_b = tree_b_->points();
+    std::vector<std::pair<double, std::uint32_t>> keyed;
+    for (std::uint32_t i = 0; i < n_; ++i)
+      if (mate_a_[i] < 0) keyed.push_back({pa_[i].x, i});
+    for (std::uint32_t j = 0; j < m_; ++j) {
+      const std::int64_t i = mate_b_[j];
+      keyed.push_back({i >= 0 ? (pa_[i].x + points_b[j].x) / 2 : points_b[j].x, node_of_b(j)});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for (const auto& [x, v] : keyed) {
+      sweep_order_.push_back(v);
+      if (is_b(v) && mate_b_[b_of_node(v)] >= 0)
+        sweep_order_.push_back(static_cast<std::uint32_t>(mate_b_[b_of_node(v)]));
+    }
+  }
+  bool changed = true;
+  // Improvements within rounding are ignored: on a line under q = 1 whole families of cycles cost
+  // exactly 0, and their rounded sums would otherwise keep lowering the labels by an ulp forever.
+  const auto relax_to = [&](std::uint32_t v, double d) {
+    if (!(d < pi_[v] - 0x1p-50 * std::max(1.0, std::fabs(d)))) return;
+    pi_[v] = d;
+    changed = true;
+  };
+  const auto relax_out = [&](std::uint32_t u) {
+    const double d = pi_[u];
+    if (is_a(u)) {
+      for (std::uint32_t k = cand_start_[u]; k < cand_start_[u + 1]; ++k) {
+        const std::uint32_t j = cand_[k];
+        if (mate_a_[u] == static_cast<std::int64_t>(j)) continue;
+        const double c = cost(u, j);
+        if (c < da_[u] + db_[j]) relax_to(node_of_b(j), d + c);
+      }
+      if (mate_a_[u] != kDiagonal) relax_to(hb_, d + da_[u]);
+    } else if (is_b(u)) {
+      const std::int64_t mate = mate_b_[b_of_node(u)];
+      if (mate >= 0) relax_to(static_cast<std::uint32_t>(mate), d - mate_cost_a_[mate]);
+      if (mate == kDiagonal) relax_to(ha_, d - db_[b_of_node(u)]);
+    } else if (u == ha_) {
+      relax_to(hb_, d);
+      for (std::uint32_t j = 0; j < m_; ++j)
+        if (mate_b_[j] != kDiagonal) relax_to(node_of_b(j), d + db_[j]);
+    } else {
+      if (flow_hub_ > 0) relax_to(ha_, d);
+      for (std::uint32_t i = 0; i < n_; ++i)
+        if (mate_a_[i] == kDiagonal) relax_to(i, d - da_[i]);
+    }
+  };
+  for (std::size_t sweep = 0; changed; ++sweep) {
+    if (sweep == kMaxSweeps) return false;
+    changed = false;
+    if (sweep % 2 == 0) {
+      for (const std::uint32_t v : sweep_order_) relax_out(v);
+    } else {  // units backwards, each still b_j before its mate
+      for (std::size_t k = sweep_order_.size(); k-- > 0;) {
+        const std::uint32_t v = sweep_order_[k];
+        if (is_a(v) && mate_a_[v] >= 0) {
+          relax_out(sweep_order_[--k]);  // its mate b, just before it
+          relax_out(v);
+        } else {
+          relax_out(v);
+        }
+      }
+    }
+    relax_out(ha_), relax_out(hb_), relax_out(ha_);
+  }
+  return true;
 }
 
 void DiagonalFlow::recompute_all_boxes() {
@@ -487,18 +628,35 @@ double DiagonalFlow::dual_bound() const {
   return dual - pair_penalty_;
 }
 
-void DiagonalFlow::augment_all() {
-  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0)
+bool DiagonalFlow::augment_all(double accept_ratio) {
+  // With accept_ratio > 1, every few augmentations: the flow with its free points sent to the
+  // diagonal is a matching (primal_cost() counts them so), the potentials a dual bound.
+  const std::size_t stride = 1 + (n_ + m_) / 256;
+  std::size_t since = 0;
+  const auto good_enough = [&] {
+    if (accept_ratio <= 1 || ++since < stride) return false;
+    since = 0;
+    const double lower = dual_bound();
+    return lower > 0 && primal_cost() <= accept_ratio * lower;
+  };
+  while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0) {
     if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
-  for (std::uint32_t i = 0; i < n_; ++i)
-    if (mate_a_[i] == kNone && !dijkstra(i)) throw std::logic_error("diagonal flow: no augmenting path");
+    if (good_enough()) return true;
+  }
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    if (mate_a_[i] != kNone) continue;
+    if (!dijkstra(i)) throw std::logic_error("diagonal flow: no augmenting path");
+    if (good_enough()) return true;
+  }
+  return false;
 }
 
-void DiagonalFlow::solve_complete() {
+void DiagonalFlow::solve_complete(double accept_ratio) {
+  if (!started_) greedy_start();
   sparse_ = false;
   completed_ = true;
   recompute_all_boxes();
-  augment_all();
+  augment_all(accept_ratio);
 }
 
 void DiagonalFlow::solve(double accept_ratio) {
@@ -518,14 +676,35 @@ void DiagonalFlow::solve(double accept_ratio) {
   constexpr std::size_t kStagedMaxPoints = 8000;
   constexpr double kLineShare = 0.5;
   const bool small = n_ + m_ <= 2 * kStagedMaxPoints;
-  const bool staged = power_.is_plain() &&
-                      (small || (power_.is_identity() && share_on_common_line(pa_, tree_b_->points()) >= kLineShare));
-  if (n_ == 0 || m_ == 0 || !staged) {
+  const double line_share = n_ == 0 || m_ == 0 ? 0 : share_on_common_line(pa_, tree_b_->points());
+  const bool on_line = power_.is_plain() && line_share >= kLineShare;
+  const bool staged = power_.is_plain() && (small || (power_.is_identity() && on_line));
+  if (n_ == 0 || m_ == 0 || !(staged || on_line)) {
     solve_complete();
     return;
   }
-  build_candidates();
+  // The band doubles until the programme's path keeps off its edges (or holds every column).
+  LineAlignment alignment;
+  for (std::uint32_t width = kBand;; width *= 2) {
+    alignment = sorted_birth_alignment(
+        pa_, tree_b_->points(), da_, db_, [this](std::uint32_t i, std::uint32_t j) { return cost(i, j); }, width);
+    if (alignment.optimal || !on_line || width >= std::max(n_, m_)) break;
+  }
+  build_candidates(alignment);
   sparse_ = true;
+  if (on_line && alignment.optimal && line_start(alignment)) {
+    // Certified over every pair: the off-line points, all that is left, are routed by searches on
+    // the complete graph, which keep the certificate (the sparse searches would lose it on the
+    // arcs into their flat-cost windows, and repair rounds then reroute hundreds of rows).
+    pair_penalty_ = 0;
+    solve_complete(accept_ratio);
+    return;
+  }
+  if (!staged) {
+    solve_complete();
+    return;
+  }
+  greedy_start();
   augment_all();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> extra;
   for (;;) {
@@ -550,10 +729,9 @@ void DiagonalFlow::solve(double accept_ratio) {
   sparse_ = false;
 }
 
-void DiagonalFlow::build_candidates() {
+void DiagonalFlow::build_candidates(const LineAlignment& alignment) {
   constexpr std::size_t kNearest = 4;  // includes the row reduction's choices
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> arcs = sorted_birth_candidates(
-      pa_, tree_b_->points(), da_, db_, [this](std::uint32_t i, std::uint32_t j) { return cost(i, j); });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> arcs = alignment_candidates(alignment);
   // Each point's nearest neighbours on the other side, that side brought to scale f first.
   const auto points_b = tree_b_->points();
   std::vector<std::uint32_t> near;

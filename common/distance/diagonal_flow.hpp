@@ -21,7 +21,11 @@
 //     potentials sloping across the box). Boxes are opened best first, boxes whose points are all
 //     settled are skipped, so this search is exact on the complete graph.
 // Either way the answer ends certified: every pair arc checked (stage 2) or searched (stage 3).
-// The flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
+// Where most points lie on one death line (floor PD1s, ~90 %), the flow starts instead from the
+// programme's optimal matching of those points, whose potentials come from label-correcting sweeps
+// on the candidates, certified over every pair like stage 2 (violated arcs added, the potentials
+// lowered again, the flow untouched); the off-line points left are routed by stage 3's searches.
+// Otherwise the flow starts from a row reduction (each a_i takes its cheapest way out when free) and a
 // column step for the b_j left free (fed from the diagonal when that is their cheapest way in);
 // the diagonal's remaining units are routed before the remaining rows.
 #pragma once
@@ -36,6 +40,7 @@
 #include <vector>
 
 #include "common/distance/linf_kdtree.hpp"
+#include "common/distance/sorted_birth_seed.hpp"
 
 namespace fnet {
 
@@ -78,8 +83,8 @@ class DiagonalFlow {
   // certified within that ratio of the optimum: primal_cost() <= accept_ratio * dual_bound().
   void solve(double accept_ratio = 1);
   // The complete-graph searches alone from the current state (stage 3 only: the solver before
-  // candidates, kept as the reference the benchmarks compare with).
-  void solve_complete();
+  // candidates, kept as the reference the benchmarks compare with); accept_ratio as for solve().
+  void solve_complete(double accept_ratio = 1);
   // A lower bound on the optimal cost from the current potentials (LP duality), valid whenever
   // solve() or solve_complete() has returned; after an exact solve it equals primal_cost() up to
   // rounding: the optimality certificate.
@@ -175,11 +180,24 @@ class DiagonalFlow {
   bool recompute_box(std::int32_t k);
   void recompute_all_boxes();
   void greedy_start();
-  void augment_all();  // routes the diagonal's remaining units, then every free row
+  // Stage 0 where most points share one death line (floor PD1s): the programme's optimal matching
+  // of those points (sorted_birth_seed.hpp), the off-line points free, with potentials certified
+  // over every pair; false (and no flow) when they cannot be had.
+  bool line_start(const LineAlignment& alignment);
+  bool lower_potentials();       // label-correcting sweeps on the candidates; false: negative cycle
+  bool lower_until_certified();  // check every pair, add the violated arcs, lower again
+  void reset_flow();
+  static constexpr std::uint32_t kBand = 32;  // the programme's first half-width, doubled as needed
+  static constexpr std::size_t kLineRounds = 16, kMaxSweeps = 200;
+  std::vector<std::uint32_t> sweep_order_;  // units of the sweeps: a lone node, or b_j then its mate
+  bool started_ = false;                    // a start (greedy or line) has set the flow
+  // Routes the diagonal's remaining units, then every free row; with accept_ratio > 1 it may stop
+  // (true) once primal_cost() <= accept_ratio * dual_bound(), the free points on the diagonal.
+  bool augment_all(double accept_ratio = 1);
 
   // Stage 1: the candidate arcs per row, CSR (row i's heads are cand_[cand_start_[i] ..
   // cand_start_[i + 1]]); extra arcs are merged in by add_candidates().
-  void build_candidates();
+  void build_candidates(const LineAlignment& alignment);
   void add_candidates(std::span<const std::pair<std::uint32_t, std::uint32_t>> arcs);
   // Stage 2: per row a_i the most negative reduced cost of a pair arc, over every pair; rows
   // beyond rounding are listed in violations_, the rest summed into pair_penalty_ (subtracted by

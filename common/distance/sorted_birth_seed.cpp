@@ -63,14 +63,15 @@ double share_on_common_line(std::span<const PlanePoint> a, std::span<const Plane
   return static_cast<double>(on) / static_cast<double>(a.size() + b.size());
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
-    std::span<const PlanePoint> a, std::span<const PlanePoint> b, std::span<const double> da,
-    std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,
-    std::uint32_t half_width) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+LineAlignment sorted_birth_alignment(std::span<const PlanePoint> a, std::span<const PlanePoint> b,
+                                     std::span<const double> da, std::span<const double> db,
+                                     const std::function<double(std::uint32_t, std::uint32_t)>& cost,
+                                     std::uint32_t half_width) {
+  LineAlignment out;
   if (a.empty() || b.empty()) return out;
   const double line = common_death(a, b);
-  const std::vector<std::uint32_t> oa = by_birth(a, line), ob = by_birth(b, line);
+  out.order_a = by_birth(a, line), out.order_b = by_birth(b, line);
+  const std::vector<std::uint32_t>&oa = out.order_a, &ob = out.order_b;
   const std::size_t n = oa.size(), m = ob.size();
   if (n == 0 || m == 0) return out;
   const std::int64_t w = static_cast<std::int64_t>(half_width) +
@@ -106,28 +107,64 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
       if (j < l || j > h) prev[j] = kInf;
     for (std::int64_t j = l; j <= h; ++j) prev[j] = cur[j], cur[j] = kInf;
   }
-  // Walk back from (n, m); when the band does not reach it, from the nearest cell of the last row.
+  // Walk back from (n, m); when the band does not reach it, from the nearest cell of the last row
+  // (the columns beyond are then sent to the diagonal, and the alignment is not optimal).
   std::size_t i = n;
-  std::int64_t j = std::min<std::int64_t>(static_cast<std::int64_t>(m), hi(n));
-  const auto add = [&](std::int64_t r, std::int64_t c) {
-    if (r >= 0 && c >= 0 && r < static_cast<std::int64_t>(n) && c < static_cast<std::int64_t>(m))
-      out.push_back({oa[static_cast<std::size_t>(r)], ob[static_cast<std::size_t>(c)]});
-  };
+  std::int64_t j = static_cast<std::int64_t>(m);
+  out.optimal = hi(n) == j;
+  for (; j > hi(n); --j)
+    out.moves.push_back(
+        {LineAlignment::Step::delete_b, static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(j - 1)});
   while (i > 0 || j > 0) {
     const std::uint8_t s = (j >= lo(i) && j <= hi(i)) ? step[at(i, j)] : std::uint8_t{kOutside};
-    const auto r = static_cast<std::int64_t>(i) - 1;
+    // A path along the band's edge may have been cut off by it: not known optimal.
+    if (s == kOutside || (j == lo(i) && j > 0) || (j == hi(i) && j < static_cast<std::int64_t>(m))) out.optimal = false;
+    const auto r = static_cast<std::uint32_t>(i) - 1, c = static_cast<std::uint32_t>(j) - 1;
     if (s == kPair) {
-      // Off-line points take line partners, shifting the full problem's alignment by a few
-      // ranks against the programme's (measured on LAMMPS PD1: up to ~5): +-3 columns.
-      for (std::int64_t dc = -3; dc <= 3; ++dc) add(r, j - 1 + dc);
-      add(r - 1, j - 1), add(r + 1, j - 1);
+      out.moves.push_back({LineAlignment::Step::pair, r, c});
       --i, --j;
     } else if (s == kDeleteA || (s == kOutside && i > 0)) {
-      add(r, j - 1), add(r, j);
+      out.moves.push_back({LineAlignment::Step::delete_a, r, static_cast<std::uint32_t>(j)});
       --i;
     } else {
-      add(static_cast<std::int64_t>(i) - 1, j - 1), add(static_cast<std::int64_t>(i), j - 1);
+      out.moves.push_back({LineAlignment::Step::delete_b, static_cast<std::uint32_t>(i), c});
       --j;
+    }
+  }
+  std::reverse(out.moves.begin(), out.moves.end());
+  return out;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
+    std::span<const PlanePoint> a, std::span<const PlanePoint> b, std::span<const double> da,
+    std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,
+    std::uint32_t half_width) {
+  return alignment_candidates(sorted_birth_alignment(a, b, da, db, cost, half_width));
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> alignment_candidates(const LineAlignment& alignment) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  const auto n = static_cast<std::int64_t>(alignment.order_a.size()),
+             m = static_cast<std::int64_t>(alignment.order_b.size());
+  const auto add = [&](std::int64_t r, std::int64_t c) {
+    if (r >= 0 && c >= 0 && r < n && c < m)
+      out.push_back({alignment.order_a[static_cast<std::size_t>(r)], alignment.order_b[static_cast<std::size_t>(c)]});
+  };
+  for (const LineAlignment::Move move : alignment.moves) {
+    const std::int64_t r = move.rank_a, c = move.rank_b;
+    switch (move.step) {
+      case LineAlignment::Step::pair:
+        // Off-line points take line partners, shifting the full problem's alignment by a few
+        // ranks against the programme's (measured on LAMMPS PD1: up to ~5): +-3 columns.
+        for (std::int64_t dc = -3; dc <= 3; ++dc) add(r, c + dc);
+        add(r - 1, c), add(r + 1, c);
+        break;
+      case LineAlignment::Step::delete_a:  // rank_b: the columns consumed so far
+        add(r, c - 1), add(r, c);
+        break;
+      case LineAlignment::Step::delete_b:  // rank_a: the rows consumed so far
+        add(r - 1, c), add(r, c);
+        break;
     }
   }
   return out;

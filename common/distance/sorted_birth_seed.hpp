@@ -19,9 +19,35 @@
 
 namespace fnet {
 
-// Pairs (i, j), i indexing a, j indexing b, possibly repeated. cost(i, j) is the pair's cost,
-// da/db the costs to the diagonal. half_width: the band, in ranks either side of the quantile line
-// (widened by |n - m|).
+// The programme's answer over the points of the common line: a monotone alignment, as moves from
+// (0, 0) to (|order_a|, |order_b|) in ranks of the line's points by birth.
+struct LineAlignment {
+  enum class Step : std::uint8_t { pair, delete_a, delete_b };
+  struct Move {
+    Step step;
+    // pair: the two ranks matched; delete_a: the rank of A sent to the diagonal and the count of B's
+    // ranks consumed before it; delete_b: the count of A's ranks consumed and the rank of B.
+    std::uint32_t rank_a, rank_b;
+  };
+  std::vector<std::uint32_t> order_a, order_b;  // indices into a and b of the line's points, by birth
+  std::vector<Move> moves;
+  // The band held the programme's optimum, which for q >= 1 is the optimal matching of the line's
+  // points alone (its pairs may still cost more than sending both to the diagonal: the caller checks).
+  bool optimal = false;
+};
+
+// half_width: the band, in ranks either side of the quantile line (widened by |n - m|). cost(i, j)
+// is the pair's cost, da/db the costs to the diagonal.
+LineAlignment sorted_birth_alignment(std::span<const PlanePoint> a, std::span<const PlanePoint> b,
+                                     std::span<const double> da, std::span<const double> db,
+                                     const std::function<double(std::uint32_t, std::uint32_t)>& cost,
+                                     std::uint32_t half_width = 32);
+
+// Candidate pairs (i, j), i indexing a, j indexing b, possibly repeated: each matched pair and its
+// neighbours in rank.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> alignment_candidates(const LineAlignment& alignment);
+
+// The two above in one call.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
     std::span<const PlanePoint> a, std::span<const PlanePoint> b, std::span<const double> da,
     std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,
