@@ -177,6 +177,7 @@ bool DiagonalFlow::line_start(const LineAlignment& alignment) {
   started_ = true;
   if (lower_potentials() && lower_until_certified()) {
     for (std::uint32_t v = 0; v < n_ + m_; ++v) refresh(v);
+    on_line_ = true;
     return true;
   }
   reset_flow();
@@ -683,12 +684,14 @@ void DiagonalFlow::solve(double accept_ratio) {
     solve_complete();
     return;
   }
-  // The band doubles until the programme's path keeps off its edges (or holds every column).
+  // The band doubles until the programme's path keeps off its edges (or holds every column, or
+  // the next one would pass kMaxBandCells).
   LineAlignment alignment;
   for (std::uint32_t width = kBand;; width *= 2) {
     alignment = sorted_birth_alignment(
         pa_, tree_b_->points(), da_, db_, [this](std::uint32_t i, std::uint32_t j) { return cost(i, j); }, width);
-    if (alignment.optimal || !on_line || width >= std::max(n_, m_)) break;
+    const std::size_t cells = static_cast<std::size_t>(std::max(n_, m_)) * (4 * std::size_t{width} + 1);
+    if (alignment.optimal || !on_line || width >= std::max(n_, m_) || cells > kMaxBandCells) break;
   }
   build_candidates(alignment);
   sparse_ = true;

@@ -106,6 +106,7 @@ class DiagonalFlow {
   std::size_t repaired_rows() const { return repaired_; }      // rows freed by a violated arc
   std::size_t candidate_arcs() const { return cand_.size(); }  // pair arcs the sparse searches scan
   bool finished_on_complete_graph() const { return completed_; }
+  bool started_on_line() const { return on_line_; }  // the line start was taken (stage 0)
 
  private:
   // Nodes: a_0..a_{n-1}, then b_0..b_{m-1}, then the hubs HA and HB.
@@ -188,9 +189,11 @@ class DiagonalFlow {
   bool lower_until_certified();  // check every pair, add the violated arcs, lower again
   void reset_flow();
   static constexpr std::uint32_t kBand = 32;  // the programme's first half-width, doubled as needed
+  static constexpr std::size_t kMaxBandCells = std::size_t{1} << 26;
   static constexpr std::size_t kLineRounds = 16, kMaxSweeps = 200;
   std::vector<std::uint32_t> sweep_order_;  // units of the sweeps: a lone node, or b_j then its mate
   bool started_ = false;                    // a start (greedy or line) has set the flow
+  bool on_line_ = false;
   // Routes the diagonal's remaining units, then every free row; with accept_ratio > 1 it may stop
   // (true) once primal_cost() <= accept_ratio * dual_bound(), the free points on the diagonal.
   bool augment_all(double accept_ratio = 1);

@@ -93,6 +93,7 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
   st.certify_rounds = flow.certify_rounds();
   st.repaired_rows = flow.repaired_rows();
   st.completed = flow.finished_on_complete_graph();
+  st.line_start = flow.started_on_line();
   if (builder) {
     for (std::uint32_t i = 0; i < pa.size(); ++i) {
       const std::int64_t j = flow.mate_of_a(i);

@@ -29,6 +29,7 @@ struct WassersteinStats {
   std::size_t certify_rounds = 0;             // LP-dual checks over every pair
   std::size_t repaired_rows = 0;              // rows freed by a violated arc
   bool completed = false;                     // finished by complete-graph searches
+  bool line_start = false;                    // started from the line's optimal matching
   // d_Wq's lower bound from the solver's final potentials (LP duality): equal to the value up to
   // rounding, an optimality certificate that needs no reference solver.
   double dual_lower = 0;
