@@ -637,6 +637,7 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
   const auto good_enough = [&] {
     if (accept_ratio <= 1 || ++since < stride) return false;
     since = 0;
+    lower_free_rows();
     const double lower = dual_bound();
     return lower > 0 && primal_cost() <= accept_ratio * lower;
   };
@@ -650,6 +651,36 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
     if (good_enough()) return true;
   }
   return false;
+}
+
+void DiagonalFlow::lower_free_rows() {
+  // A free row has no arc in, so its potential is bound only by its arcs out: the least value
+  // that keeps them all >= 0 (one of them tight) is feasible and raises the dual bound by what
+  // the row's cheapest way out costs, where the potential it had may be far above that.
+  const auto nodes = tree_b_->nodes();
+  const auto order = tree_b_->order();
+  const auto points = tree_b_->points();
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    if (mate_a_[i] != kNone) continue;
+    double best = da_[i] - pi_[hb_];  // min over the arcs out of cost - pi(head)
+    box_stack_.assign(nodes.empty() ? 0 : 1, 0);
+    while (!box_stack_.empty()) {
+      const std::int32_t k = box_stack_.back();
+      box_stack_.pop_back();
+      const auto& box = nodes[k];
+      if (!(box_price_bound(i, k) < best)) continue;
+      if (box.left >= 0) {
+        box_stack_.push_back(box.left), box_stack_.push_back(box.right);
+        continue;
+      }
+      for (std::uint32_t s = box.begin; s < box.end; ++s) {
+        const std::uint32_t j = order[s];
+        const double c = power_(linf_distance(pa_[i], points[j]));
+        if (c < da_[i] + db_[j]) best = std::min(best, c - pi_[node_of_b(j)]);
+      }
+    }
+    pi_[i] = -best;
+  }
 }
 
 void DiagonalFlow::solve_complete(double accept_ratio) {
@@ -695,7 +726,9 @@ void DiagonalFlow::solve(double accept_ratio) {
   }
   build_candidates(alignment);
   sparse_ = true;
-  if (on_line && alignment.optimal && line_start(alignment)) {
+  // A band that stopped growing before its path kept off its edges may still hold the optimum (under
+  // q = 1 equal-cost paths abound): line_start() finds out.
+  if (on_line && line_start(alignment)) {
     // Certified over every pair: the off-line points, all that is left, are routed by searches on
     // the complete graph, which keep the certificate (the sparse searches would lose it on the
     // arcs into their flat-cost windows, and repair rounds then reroute hundreds of rows).

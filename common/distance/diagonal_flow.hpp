@@ -190,13 +190,14 @@ class DiagonalFlow {
   void reset_flow();
   static constexpr std::uint32_t kBand = 32;  // the programme's first half-width, doubled as needed
   static constexpr std::size_t kMaxBandCells = std::size_t{1} << 26;
-  static constexpr std::size_t kLineRounds = 16, kMaxSweeps = 200;
+  static constexpr std::size_t kLineRounds = 64, kMaxSweeps = 200;
   std::vector<std::uint32_t> sweep_order_;  // units of the sweeps: a lone node, or b_j then its mate
   bool started_ = false;                    // a start (greedy or line) has set the flow
   bool on_line_ = false;
   // Routes the diagonal's remaining units, then every free row; with accept_ratio > 1 it may stop
   // (true) once primal_cost() <= accept_ratio * dual_bound(), the free points on the diagonal.
   bool augment_all(double accept_ratio = 1);
+  void lower_free_rows();  // each free row's potential to the least feasible value
 
   // Stage 1: the candidate arcs per row, CSR (row i's heads are cand_[cand_start_[i] ..
   // cand_start_[i + 1]]); extra arcs are merged in by add_candidates().
