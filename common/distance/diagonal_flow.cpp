@@ -639,7 +639,9 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
     since = 0;
     lower_free_rows();
     const double lower = dual_bound();
-    return lower > 0 && primal_cost() <= accept_ratio * lower;
+    if (!(lower > 0)) return false;
+    if (primal_cost() <= accept_ratio * lower) return true;
+    return complete_free_rows(accept_ratio * lower);
   };
   while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0) {
     if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
@@ -651,6 +653,49 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
     if (good_enough()) return true;
   }
   return false;
+}
+
+bool DiagonalFlow::complete_free_rows(double target) {
+  // Each free row, now on the diagonal, may take a candidate b_j instead, sending b_j's partner to
+  // the diagonal (or b_j leaving it): the best such change per row, each b_j at most once, in
+  // row order. Applied only when the matching then costs <= target.
+  struct Swap {
+    std::uint32_t row, column;
+    double cost;
+  };
+  std::vector<Swap> swaps;
+  std::vector<std::uint8_t> used(m_, 0);
+  double upper = primal_cost();
+  for (std::uint32_t i = 0; i < n_; ++i) {
+    if (mate_a_[i] != kNone) continue;
+    double best_gain = 0;
+    Swap best{i, 0, 0};
+    for (std::uint32_t k = cand_start_[i]; k < cand_start_[i + 1]; ++k) {
+      const std::uint32_t j = cand_[k];
+      if (used[j]) continue;
+      const double c = cost(i, j);
+      if (!(c < da_[i] + db_[j])) continue;
+      const std::int64_t mate = mate_b_[j];
+      const double before = da_[i] + (mate >= 0 ? mate_cost_a_[mate] : db_[j]);
+      const double after = c + (mate >= 0 ? da_[mate] : 0.0);
+      if (before - after > best_gain) best_gain = before - after, best = {i, j, c};
+    }
+    if (best_gain == 0) continue;
+    used[best.column] = 1;
+    swaps.push_back(best);
+    upper -= best_gain;
+  }
+  if (!(upper <= target)) return false;
+  for (const Swap& s : swaps) {
+    const std::int64_t mate = mate_b_[s.column];
+    if (mate >= 0) {
+      mate_a_[mate] = kDiagonal, ++a_to_diagonal_;
+    } else if (mate == kDiagonal) {
+      --b_from_diagonal_;
+    }
+    mate_a_[s.row] = s.column, mate_b_[s.column] = s.row, mate_cost_a_[s.row] = s.cost;
+  }
+  return true;
 }
 
 void DiagonalFlow::lower_free_rows() {

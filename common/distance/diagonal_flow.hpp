@@ -200,6 +200,10 @@ class DiagonalFlow {
   // (true) once primal_cost() <= accept_ratio * dual_bound(), the free points on the diagonal.
   bool augment_all(double accept_ratio = 1);
   void lower_free_rows();  // each free row's potential to the least feasible value
+  // A matching from the flow: free rows on the diagonal or, where cheaper, on a candidate whose
+  // partner goes to the diagonal; taken (true) when it costs <= target. Ends an approximate solve:
+  // the flow is no longer one the searches can go on from.
+  bool complete_free_rows(double target);
 
   // Stage 1: the candidate arcs per row, CSR (row i's heads are cand_[cand_start_[i] ..
   // cand_start_[i + 1]]); extra arcs are merged in by add_candidates().
