@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -769,7 +770,7 @@ void DiagonalFlow::solve(double accept_ratio) {
     const std::size_t cells = static_cast<std::size_t>(std::max(n_, m_)) * (4 * std::size_t{width} + 1);
     if (alignment.optimal || !on_line || width >= std::max(n_, m_) || cells > kMaxBandCells) break;
   }
-  build_candidates(alignment);
+  build_candidates(alignment, on_line);
   sparse_ = true;
   // A band that stopped growing before its path kept off its edges may still hold the optimum (under
   // q = 1 equal-cost paths abound): line_start() finds out.
@@ -785,6 +786,7 @@ void DiagonalFlow::solve(double accept_ratio) {
     solve_complete();
     return;
   }
+  if (on_line) add_nearest_candidates(std::nullopt);  // the line start failed: every point's
   greedy_start();
   augment_all();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> extra;
@@ -810,26 +812,36 @@ void DiagonalFlow::solve(double accept_ratio) {
   sparse_ = false;
 }
 
-void DiagonalFlow::build_candidates(const LineAlignment& alignment) {
+void DiagonalFlow::build_candidates(const LineAlignment& alignment, bool off_line_only) {
+  cand_start_.assign(n_ + 1, 0);
+  cand_.clear();
+  add_candidates(alignment_candidates(alignment));
+  add_nearest_candidates(off_line_only ? std::optional<double>(alignment.line) : std::nullopt);
+}
+
+void DiagonalFlow::add_nearest_candidates(std::optional<double> skip_line) {
+  // Each point's nearest neighbours on the other side, that side brought to scale f first. The
+  // line start needs them for the off-line points only (its line points have the programme's
+  // pairs, and the certification adds whatever else its potentials need).
   constexpr std::size_t kNearest = 4;  // includes the row reduction's choices
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> arcs = alignment_candidates(alignment);
-  // Each point's nearest neighbours on the other side, that side brought to scale f first.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> arcs;
   const auto points_b = tree_b_->points();
   std::vector<std::uint32_t> near;
   const auto add_nearest = [&](double f) {
     for (std::uint32_t i = 0; i < n_; ++i) {
+      if (skip_line && pa_[i].y == *skip_line) continue;
       tree_b_->nearest({pa_[i].x * f, pa_[i].y * f}, kNearest, near, i);
       for (const std::uint32_t j : near) arcs.push_back({i, j});
     }
     for (std::uint32_t j = 0; j < m_; ++j) {
+      if (skip_line && points_b[j].y == *skip_line) continue;
       tree_a_->nearest({points_b[j].x / f, points_b[j].y / f}, kNearest, near, j);
       for (const std::uint32_t i : near) arcs.push_back({i, j});
     }
   };
   add_nearest(1);
-  if (const double f = quantile_scale(pa_, points_b); f != 1) add_nearest(f);
-  cand_start_.assign(n_ + 1, 0);
-  cand_.clear();
+  if (!skip_line)
+    if (const double f = quantile_scale(pa_, points_b); f != 1) add_nearest(f);
   add_candidates(arcs);
 }
 

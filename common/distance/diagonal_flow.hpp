@@ -34,6 +34,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <set>
 #include <span>
 #include <utility>
@@ -207,7 +208,9 @@ class DiagonalFlow {
 
   // Stage 1: the candidate arcs per row, CSR (row i's heads are cand_[cand_start_[i] ..
   // cand_start_[i + 1]]); extra arcs are merged in by add_candidates().
-  void build_candidates(const LineAlignment& alignment);
+  // The programme's pairs and the nearest neighbours (off_line_only: of the off-line points only).
+  void build_candidates(const LineAlignment& alignment, bool off_line_only);
+  void add_nearest_candidates(std::optional<double> skip_line);  // skip the points on that line
   void add_candidates(std::span<const std::pair<std::uint32_t, std::uint32_t>> arcs);
   // Stage 2: per row a_i the most negative reduced cost of a pair arc, over every pair; rows
   // beyond rounding are listed in violations_, the rest summed into pair_penalty_ (subtracted by

@@ -70,6 +70,7 @@ LineAlignment sorted_birth_alignment(std::span<const PlanePoint> a, std::span<co
   LineAlignment out;
   if (a.empty() || b.empty()) return out;
   const double line = common_death(a, b);
+  out.line = line;
   out.order_a = by_birth(a, line), out.order_b = by_birth(b, line);
   const std::vector<std::uint32_t>&oa = out.order_a, &ob = out.order_b;
   const std::size_t n = oa.size(), m = ob.size();

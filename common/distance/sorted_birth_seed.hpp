@@ -29,6 +29,7 @@ struct LineAlignment {
     // ranks consumed before it; delete_b: the count of A's ranks consumed and the rank of B.
     std::uint32_t rank_a, rank_b;
   };
+  double line = 0;                              // the common death value
   std::vector<std::uint32_t> order_a, order_b;  // indices into a and b of the line's points, by birth
   std::vector<Move> moves;
   // The band held the programme's optimum, which for q >= 1 is the optimal matching of the line's
