@@ -83,8 +83,8 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
   }
 
   DiagonalFlow flow(pa, pb, power);
-  // delta > 0: the sparse stage's matching is the upper bound and its repaired dual the lower;
-  // the solve stops at the first certification round where they are close enough.
+  // delta > 0: the matching in hand is the upper bound and the dual the lower; the solve stops
+  // as soon as they are close enough (diagonal_flow.hpp).
   flow.solve(accept_ratio);
   st.augmentations = flow.augmentations();
   st.settled = flow.settled();

@@ -17,7 +17,7 @@ struct WassersteinParams {
   double q = 1;  // finite, >= 1
   EssentialConvention essential = EssentialConvention::floor;
   // Accepted relative error: the answer satisfies upper - lower <= delta * lower; the solve stops
-  // at the first certification round that reaches it (lower == upper when it is exact by then).
+  // as soon as its bounds reach it (lower == upper when it is exact by then).
   double delta = 0;
 };
 
