@@ -410,10 +410,7 @@ bool DiagonalFlow::is_sink(std::uint32_t v) const {
   return false;
 }
 
-void DiagonalFlow::push(double key, std::int64_t id) {
-  heap_.push_back({key, id});
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
-}
+void DiagonalFlow::push(double key, std::int64_t id) { heap_.push({key, id}); }
 
 void DiagonalFlow::push_box(std::uint32_t row, std::int32_t node, double key) {
   boxes_.push_back({row, node});
@@ -519,9 +516,7 @@ bool DiagonalFlow::dijkstra(std::uint32_t source) {
   push(0.0, source);
   std::int64_t target = -1;
   while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-    const auto [d, id] = heap_.back();
-    heap_.pop_back();
+    const auto [d, id] = heap_.pop();
     if (is_box_entry(id)) {
       const BoxEntry box = boxes_[static_cast<std::size_t>(id - kBoxBase)];
       current_ = d;

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "common/distance/linf_kdtree.hpp"
+#include "common/distance/quaternary_heap.hpp"
 #include "common/distance/sorted_birth_seed.hpp"
 
 namespace fnet {
@@ -247,7 +248,7 @@ class DiagonalFlow {
   std::vector<double> dist_, pred_cost_;
   std::vector<std::uint32_t> pred_, seen_, final_;
   std::vector<std::uint32_t> finalized_, path_;
-  std::vector<std::pair<double, std::int64_t>> heap_;
+  QuaternaryHeap heap_;
   std::size_t augmentations_ = 0, settled_ = 0, boxes_opened_ = 0;
 };
 
