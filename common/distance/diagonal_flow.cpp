@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <functional>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 #include "common/distance/sorted_birth_seed.hpp"
@@ -150,9 +148,8 @@ void DiagonalFlow::reset_flow() {
 
 bool DiagonalFlow::line_start(const LineAlignment& alignment) {
   // The programme's optimal matching of the line's points as the flow (a pair that costs more than
-  // sending both to the diagonal sends both there), the off-line points left free.
-  reset_flow();
-  sweep_order_.clear();
+  // sending both to the diagonal sends both there), the off-line points left free. The flow is
+  // empty here: nothing has started it.
   for (const LineAlignment::Move move : alignment.moves) {
     if (move.step == LineAlignment::Step::pair) {
       const std::uint32_t i = alignment.order_a[move.rank_a], j = alignment.order_b[move.rank_b];
@@ -698,29 +695,12 @@ void DiagonalFlow::lower_free_rows() {
   // A free row has no arc in, so its potential is bound only by its arcs out: the least value
   // that keeps them all >= 0 (one of them tight) is feasible and raises the dual bound by what
   // the row's cheapest way out costs, where the potential it had may be far above that.
-  const auto nodes = tree_b_->nodes();
-  const auto order = tree_b_->order();
-  const auto points = tree_b_->points();
+  std::vector<std::pair<double, std::uint32_t>> top;
   for (std::uint32_t i = 0; i < n_; ++i) {
     if (mate_a_[i] != kNone) continue;
-    double best = da_[i] - pi_[hb_];  // min over the arcs out of cost - pi(head)
-    box_stack_.assign(nodes.empty() ? 0 : 1, 0);
-    while (!box_stack_.empty()) {
-      const std::int32_t k = box_stack_.back();
-      box_stack_.pop_back();
-      const auto& box = nodes[k];
-      if (!(box_price_bound(i, k) < best)) continue;
-      if (box.left >= 0) {
-        box_stack_.push_back(box.left), box_stack_.push_back(box.right);
-        continue;
-      }
-      for (std::uint32_t s = box.begin; s < box.end; ++s) {
-        const std::uint32_t j = order[s];
-        const double c = power_(linf_distance(pa_[i], points[j]));
-        if (c < da_[i] + db_[j]) best = std::min(best, c - pi_[node_of_b(j)]);
-      }
-    }
-    pi_[i] = -best;
+    const double diagonal = da_[i] - pi_[hb_];  // cost - pi(head) of the arc to the diagonal
+    cheapest_pair_prices(i, 1, diagonal, top);
+    pi_[i] = -(top.empty() ? diagonal : std::min(diagonal, top.front().first));
   }
 }
 
@@ -739,13 +719,13 @@ void DiagonalFlow::solve(double accept_ratio) {
   // PD1 pairs exact solves take 4-15 rounds with three arcs added per violating row; past
   // kMaxRounds the complete graph finishes.
   constexpr std::size_t kMaxRounds = 24, kFewRows = 2;
-  // Where the staged solve is measured faster: W1 and W2 up to a few thousand points a side; above
-  // that W1 only when most points lie on the common death line, where the sorted-birth programme
-  // finds the alignment (a one-off run on 20 000 jittered copies of a LAMMPS PD1: 35.9 s against 191.5 s
-  // for the complete-graph searches alone; the 50 000-point random pair of large_inputs_test:
-  // 108 s against 23 s, so not there). W2 at 20 000 repairs each row several times over (201 s)
-  // and still ends on the complete graph. Other q keep the complete graph: their costs are capped
-  // at ArcPower::kCap, and potentials near the cap leave the check's tolerance meaningless.
+  // The line start is taken for W1 and W2 at any size where most points lie on one death line.
+  // Where the staged solve (repair rounds) is measured faster when it is not: W1 and W2 up to a few
+  // thousand points a side; above that W1 only on a common death line (a one-off run on 20 000
+  // jittered copies of a LAMMPS PD1, before the line start: 35.9 s against 191.5 s for the
+  // complete-graph searches alone; the 50 000-point random pair of large_inputs_test: 108 s against
+  // 23 s, so not there). Other q keep the complete graph: their costs are capped at
+  // ArcPower::kCap, and potentials near the cap leave the check's tolerance meaningless.
   constexpr std::size_t kStagedMaxPoints = 8000;
   constexpr double kLineShare = 0.5;
   const bool small = n_ + m_ <= 2 * kStagedMaxPoints;
@@ -864,47 +844,53 @@ void DiagonalFlow::add_candidates(std::span<const std::pair<std::uint32_t, std::
   cand_start_[n_] = static_cast<std::uint32_t>(cand_.size());
 }
 
-void DiagonalFlow::check_pairs(std::size_t top_arcs) {
-  violations_.clear();
-  pair_penalty_ = 0;
+void DiagonalFlow::cheapest_pair_prices(std::uint32_t i, std::size_t count, double limit,
+                                        std::vector<std::pair<double, std::uint32_t>>& top) {
+  top.clear();
   const auto nodes = tree_b_->nodes();
   if (nodes.empty()) return;
   const auto order = tree_b_->order();
   const auto points = tree_b_->points();
-  const std::size_t kTop = top_arcs;
+  const PlanePoint a = pa_[i];
+  const auto threshold = [&] { return top.size() < count ? limit : top.back().first; };
+  box_stack_.assign(1, 0);
+  while (!box_stack_.empty()) {
+    const std::int32_t k = box_stack_.back();
+    box_stack_.pop_back();
+    const auto& box = nodes[k];
+    if (!(box_price_bound(i, k) < threshold())) continue;
+    if (box.left >= 0) {
+      // Nearer child last: popped first, it lowers the threshold sooner.
+      const double dl = tree_b_->box_distance(nodes[box.left], a), dr = tree_b_->box_distance(nodes[box.right], a);
+      if (dl < dr) {
+        box_stack_.push_back(box.right), box_stack_.push_back(box.left);
+      } else {
+        box_stack_.push_back(box.left), box_stack_.push_back(box.right);
+      }
+      continue;
+    }
+    for (std::uint32_t s = box.begin; s < box.end; ++s) {
+      const std::uint32_t j = order[s];
+      const double cj = power_(linf_distance(a, points[j]));
+      if (!(cj < da_[i] + db_[j])) continue;
+      const double v = cj - pi_[node_of_b(j)];
+      if (!(v < threshold())) continue;
+      if (top.size() == count) top.pop_back();
+      top.insert(std::upper_bound(top.begin(), top.end(), std::make_pair(v, j)), {v, j});
+    }
+  }
+}
+
+void DiagonalFlow::check_pairs(std::size_t top_arcs) {
+  violations_.clear();
+  pair_penalty_ = 0;
+  const auto points = tree_b_->points();
   std::vector<std::pair<double, std::uint32_t>> top;  // the row's most negative c_ij - pi(b_j), ascending
   for (std::uint32_t i = 0; i < n_; ++i) {
-    // Find the smallest c_ij - pi(b_j) below -pi(a_i): negative reduced costs.
+    // The smallest c_ij - pi(b_j) below -pi(a_i): negative reduced costs.
     const PlanePoint a = pa_[i];
     const double pa = pi_[i];
-    top.clear();
-    const auto threshold = [&] { return top.size() < kTop ? -pa : top.back().first; };
-    box_stack_.assign(1, 0);
-    while (!box_stack_.empty()) {
-      const std::int32_t k = box_stack_.back();
-      box_stack_.pop_back();
-      const auto& box = nodes[k];
-      if (!(box_price_bound(i, k) < threshold())) continue;
-      if (box.left >= 0) {
-        // Nearer child last: popped first, it lowers the threshold sooner.
-        const double dl = tree_b_->box_distance(nodes[box.left], a), dr = tree_b_->box_distance(nodes[box.right], a);
-        if (dl < dr) {
-          box_stack_.push_back(box.right), box_stack_.push_back(box.left);
-        } else {
-          box_stack_.push_back(box.left), box_stack_.push_back(box.right);
-        }
-        continue;
-      }
-      for (std::uint32_t s = box.begin; s < box.end; ++s) {
-        const std::uint32_t j = order[s];
-        const double cj = power_(linf_distance(a, points[j]));
-        if (!(cj < da_[i] + db_[j])) continue;
-        const double v = cj - pi_[node_of_b(j)];
-        if (!(v < threshold())) continue;
-        if (top.size() == kTop) top.pop_back();
-        top.insert(std::upper_bound(top.begin(), top.end(), std::make_pair(v, j)), {v, j});
-      }
-    }
+    cheapest_pair_prices(i, top_arcs, -pa, top);
     if (top.empty()) continue;
     const double amount = -(top.front().first + pa);
     pair_penalty_ += amount;

@@ -223,6 +223,10 @@ class DiagonalFlow {
   // top_arcs: the most violated arcs listed per row (repair rounds: 3, measured: 1 needs twice the
   // rounds, 6 no fewer; the line start's lowering: kLineTopArcs, where each row may need many).
   void check_pairs(std::size_t top_arcs = 3);
+  // Into top, ascending: the count smallest c_ij - pi(b_j) below limit over row i's pair arcs
+  // (those that beat sending both to the diagonal), with their columns; found with the 2-d tree.
+  void cheapest_pair_prices(std::uint32_t i, std::size_t count, double limit,
+                            std::vector<std::pair<double, std::uint32_t>>& top);
   void repair_violations();  // raise each violating row's potential to feasible and free it
   bool sparse_ = false;
   std::vector<std::uint32_t> cand_start_, cand_;

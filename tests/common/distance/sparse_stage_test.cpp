@@ -149,9 +149,9 @@ LinePair mostly_line_pair(std::mt19937_64& rng, std::size_t n, double shift, boo
     p.b.push_back({x, q.y == 0 ? 0 : value(std::min(x, q.y * 1.05))});
   }
   for (std::size_t k = 0; k < n / 20; ++k) p.b.push_back({value(u(rng)), 0});
-  const auto not_diagonal = [](PlanePoint q) { return q.x != q.y; };
-  std::erase_if(p.a, [&](PlanePoint q) { return !not_diagonal(q); });
-  std::erase_if(p.b, [&](PlanePoint q) { return !not_diagonal(q); });
+  const auto on_diagonal = [](PlanePoint q) { return q.x == q.y; };
+  std::erase_if(p.a, on_diagonal);
+  std::erase_if(p.b, on_diagonal);
   return p;
 }
 
