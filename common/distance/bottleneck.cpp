@@ -26,6 +26,7 @@ struct Side {
   std::vector<std::int64_t> mate;       // index on the other side, -1 if unmatched
   std::vector<std::uint32_t> by_birth;  // point indices, largest birth first
   std::vector<std::uint32_t> parent;    // local search: the point of the other side that reached it
+  std::vector<std::uint32_t> by_coordinate[2];  // point indices by ascending x, by ascending y
   LinfKdTree tree;
 
   explicit Side(std::vector<PlanePoint> pts) : points(std::move(pts)), tree(points) {
@@ -36,6 +37,15 @@ struct Side {
     std::iota(by_birth.begin(), by_birth.end(), 0u);
     std::stable_sort(by_birth.begin(), by_birth.end(),
                      [&](std::uint32_t p, std::uint32_t q) { return points[p].x > points[q].x; });
+  }
+
+  // by_coordinate, sorted on first use (only listings need it).
+  void sort_by_coordinate() {
+    if (!by_coordinate[0].empty() || points.empty()) return;
+    by_coordinate[0].assign(by_birth.rbegin(), by_birth.rend());
+    by_coordinate[1] = by_coordinate[0];
+    std::stable_sort(by_coordinate[1].begin(), by_coordinate[1].end(),
+                     [&](std::uint32_t p, std::uint32_t q) { return points[p].y < points[q].y; });
   }
 };
 
@@ -100,19 +110,42 @@ class ThresholdMatcher {
 
   // The distinct candidate values (pair distances, diagonal distances) strictly between lo and
   // hi, ascending, into `out`; or false, when more than `limit` turn up, with `estimate` the
-  // count of all of them extrapolated from the part scanned.
-  bool list_candidates(double lo, double hi, std::size_t limit, std::vector<double>& out, double& estimate) const {
+  // count of all of them (extrapolated: from the pairs the sweep below would look at).
+  bool list_candidates(double lo, double hi, std::size_t limit, std::vector<double>& out, double& estimate) {
     out.clear();
+    a_.sort_by_coordinate();
+    b_.sort_by_coordinate();
     for (const Side* s : {&a_, &b_})
       for (const double d : s->diagonal)
         if (d > lo && d < hi) out.push_back(d);
-    const std::span<const std::uint32_t> order = a_.tree.order();  // neighbours in turn: warm caches
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      b_.tree.distances_between(a_.points[order[k]], lo, hi, out);
-      if (out.size() > limit) {
-        estimate = static_cast<double>(out.size()) * static_cast<double>(order.size()) / static_cast<double>(k + 1);
-        return false;
-      }
+    // A pair's distance is its larger coordinate difference: lies in (lo, hi) exactly when |dx|
+    // does and |dy| <= |dx|, or |dy| does and |dx| < |dy|. With both sides sorted by each
+    // coordinate, the points of B whose difference to a lies in (lo, hi) form two runs (left and
+    // right of a) whose ends only move forward as a moves forward: a sweep per coordinate finds
+    // them, so the cost is the pairs in those runs, not a range search per point. Differences
+    // are compared as computed (rounding is monotone), so the runs hold exactly those pairs.
+    constexpr std::size_t kRunsPerCandidate = 8;  // the runs hold ~2-6x the candidates on these diagrams
+    std::size_t in_runs = 0;
+    for (const Axis axis : {Axis::x, Axis::y})
+      sweep_runs(axis, lo, hi, [&](std::uint32_t, std::uint32_t first, std::uint32_t last) { in_runs += last - first; });
+    if (in_runs > kRunsPerCandidate * limit) {
+      estimate = static_cast<double>(in_runs) / kRunsPerCandidate;
+      return false;
+    }
+    for (const Axis axis : {Axis::x, Axis::y}) {
+      const std::vector<std::uint32_t>& b_order = b_.by_coordinate[static_cast<int>(axis)];
+      sweep_runs(axis, lo, hi, [&](std::uint32_t i, std::uint32_t first, std::uint32_t last) {
+        const PlanePoint p = a_.points[i];
+        for (std::uint32_t k = first; k < last; ++k) {
+          const PlanePoint q = b_.points[b_order[k]];
+          const double dx = std::fabs(p.x - q.x), dy = std::fabs(p.y - q.y);
+          if (axis == Axis::x ? dy <= dx : dx < dy) out.push_back(linf_distance(p, q));
+        }
+      });
+    }
+    if (out.size() > limit) {
+      estimate = static_cast<double>(out.size());
+      return false;
     }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -133,6 +166,31 @@ class ThresholdMatcher {
   const std::vector<std::int64_t>& mates_of_a() const { return a_.mate; }
 
  private:
+  enum class Axis { x, y };
+  static double coordinate(PlanePoint p, Axis axis) { return axis == Axis::x ? p.x : p.y; }
+
+  // For each point a_i of A (in ascending order of the coordinate), run(i, first, last) twice:
+  // with the positions in B's order by that coordinate of the points b whose difference
+  // |a_i - b| in it lies in (lo, hi), those below a_i and those above.
+  template <class Run>
+  void sweep_runs(Axis axis, double lo, double hi, Run run) const {
+    const std::vector<std::uint32_t>& a_order = a_.by_coordinate[static_cast<int>(axis)];
+    const std::vector<std::uint32_t>& b_order = b_.by_coordinate[static_cast<int>(axis)];
+    const auto size = static_cast<std::uint32_t>(b_order.size());
+    const auto at = [&](std::uint32_t k) { return coordinate(b_.points[b_order[k]], axis); };
+    // below: [below_first, below_last) have a - b in (lo, hi); above: b - a in (lo, hi).
+    std::uint32_t below_first = 0, below_last = 0, above_first = 0, above_last = 0;
+    for (const std::uint32_t i : a_order) {
+      const double c = coordinate(a_.points[i], axis);
+      while (below_first < size && c - at(below_first) >= hi) ++below_first;
+      while (below_last < size && c - at(below_last) > lo) ++below_last;
+      while (above_first < size && at(above_first) - c <= lo) ++above_first;
+      while (above_last < size && at(above_last) - c < hi) ++above_last;
+      if (below_first < below_last) run(i, below_first, below_last);
+      if (above_first < above_last) run(i, above_first, above_last);
+    }
+  }
+
   // Unmatched forced points of s take unmatched points of o within r, in two sweeps by
   // decreasing birth. First, on the line where most points lie (PD1 under floor: death = 0),
   // each takes the point of the line of largest birth: on a line this is a maximum matching in

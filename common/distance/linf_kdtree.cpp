@@ -222,33 +222,6 @@ std::int64_t LinfKdTree::take_rightmost_within(PlanePoint q, double r, bool same
   return best;
 }
 
-namespace {
-// The largest L-infinity distance from q to a point of the box.
-double box_far(const LinfKdTree::Node& node, PlanePoint q) {
-  return std::max({q.x - node.xmin, node.xmax - q.x, q.y - node.ymin, node.ymax - q.y});
-}
-}  // namespace
-
-void LinfKdTree::distances_between(PlanePoint q, double lo, double hi, std::vector<double>& out) const {
-  if (nodes_.empty()) return;
-  const_stack_.clear();
-  const_stack_.push_back(0);
-  while (!const_stack_.empty()) {
-    const Node& node = nodes_[const_stack_.back()];
-    const_stack_.pop_back();
-    if (box_distance(node, q) >= hi || box_far(node, q) <= lo) continue;
-    if (node.left < 0) {
-      for (std::uint32_t s = node.begin; s < node.end; ++s) {
-        const double d = linf_distance(points_[order_[s]], q);
-        if (d > lo && d < hi) out.push_back(d);
-      }
-      continue;
-    }
-    const_stack_.push_back(node.right);
-    const_stack_.push_back(node.left);
-  }
-}
-
 void LinfKdTree::erase(std::uint32_t point) {
   if (erased_[point]) return;
   erased_[point] = 1;

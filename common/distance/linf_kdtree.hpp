@@ -55,9 +55,6 @@ class LinfKdTree {
   void restore_all();
   bool is_present(std::uint32_t point) const { return !erased_[point]; }
 
-  // Over all points, erased or not: the distances d with lo < d < hi, appended to `out`.
-  void distances_between(PlanePoint q, double lo, double hi, std::vector<double>& out) const;
-
  private:
   std::int32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent, int depth);
 
