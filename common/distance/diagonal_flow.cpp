@@ -691,6 +691,45 @@ bool DiagonalFlow::complete_free_rows(double target) {
   return true;
 }
 
+bool DiagonalFlow::match_free_points_apart(double target) {
+  // Loose points: free, or on the diagonal (they may pair up among themselves instead).
+  std::vector<PlanePoint> loose_a, loose_b;
+  std::vector<std::uint32_t> row_of, column_of;
+  double cost_apart = primal_cost();  // loose points counted on the diagonal: replaced below
+  const auto points_b = tree_b_->points();
+  for (std::uint32_t i = 0; i < n_; ++i)
+    if (mate_a_[i] < 0) loose_a.push_back(pa_[i]), row_of.push_back(i), cost_apart -= da_[i];
+  for (std::uint32_t j = 0; j < m_; ++j)
+    if (mate_b_[j] < 0) loose_b.push_back(points_b[j]), column_of.push_back(j), cost_apart -= db_[j];
+  if (loose_a.empty() || loose_b.empty()) return false;  // nothing to pair: the flow's own matching
+  DiagonalFlow apart(loose_a, loose_b, power_);
+  apart.solve();
+  cost_apart += apart.primal_cost();
+  if (!(cost_apart <= target)) return false;
+  for (std::uint32_t k = 0; k < row_of.size(); ++k) {
+    const std::uint32_t i = row_of[k];
+    if (mate_a_[i] == kDiagonal) --a_to_diagonal_;
+    const std::int64_t j = apart.mate_of_a(k);
+    if (j >= 0) {
+      const std::uint32_t column = column_of[static_cast<std::size_t>(j)];
+      mate_a_[i] = column, mate_cost_a_[i] = cost(i, column);
+    } else {
+      mate_a_[i] = kDiagonal, ++a_to_diagonal_;
+    }
+  }
+  for (std::uint32_t k = 0; k < column_of.size(); ++k) {
+    const std::uint32_t j = column_of[k];
+    if (mate_b_[j] == kDiagonal) --b_from_diagonal_;
+    const std::int64_t i = apart.mate_of_b(k);
+    if (i >= 0) {
+      mate_b_[j] = row_of[static_cast<std::size_t>(i)];
+    } else {
+      mate_b_[j] = kDiagonal, ++b_from_diagonal_;
+    }
+  }
+  return true;
+}
+
 void DiagonalFlow::lower_free_rows() {
   // A free row has no arc in, so its potential is bound only by its arcs out: the least value
   // that keeps them all >= 0 (one of them tight) is feasible and raises the dual bound by what
@@ -754,6 +793,13 @@ void DiagonalFlow::solve(double accept_ratio) {
     // the complete graph, which keep the certificate (the sparse searches would lose it on the
     // arcs into their flat-cost windows, and repair rounds then reroute hundreds of rows).
     pair_penalty_ = 0;
+    // Approximate: the line's points are matched optimally among themselves already; matched
+    // apart, optimally too, the free points may already give a matching within the ratio.
+    if (accept_ratio > 1) {
+      lower_free_rows();
+      const double lower = dual_bound();
+      if (lower > 0 && match_free_points_apart(accept_ratio * lower)) return;
+    }
     solve_complete(accept_ratio);
     return;
   }

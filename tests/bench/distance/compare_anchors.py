@@ -6,8 +6,9 @@ usage: compare_anchors.py FNET_ANALYZE [--sizes 1000,5000,20000] A.json B.json [
    sees the same finite diagrams), then the sum of fnet's twelve distances per frame pair.
 2. Larger pairs built from the last pair's pd1 (copies with jitter, then a perturbed copy: what
    consecutive frames look like): ~1 000, 5 000 and 20 000 points.
-3. The approximate mode at 1 000, 5 000 and 20 000 points: delta, time, the certified bound, the true
-   relative error against the exact value, fnet and Hera at the same delta.
+3. The approximate mode on the LAMMPS pairs' pd1, then at 1 000, 5 000 and 20 000 points: delta, time,
+   the certified bound, the true relative error against the exact value, fnet and Hera at the same
+   delta.
 
 fnet's time is the "seconds" it reports (computation only, JSON parsing excluded); the anchors are
 timed around their call. Hera runs at relative error 0.01 (it has no exact Wasserstein). The
@@ -154,42 +155,47 @@ def main(argv):
     print("\n== Larger pairs: jittered copies of the last pair's pd1, B a perturbed copy of A ==")
     print(HEADER)
     with tempfile.TemporaryDirectory() as tmp:
-        pairs = {}
+        # The LAMMPS pairs first, then the perturbed copies.
+        approx = []
+        for k in range(0, len(files), 2):
+            name = files[k].split("/")[-1].replace(".json", "") + "->" + files[k + 1].split("/")[-1].replace(".json", "")
+            approx.append((name, files[k], files[k + 1], finite(json.load(open(files[k]))["pd1"]),
+                           finite(json.load(open(files[k + 1]))["pd1"]), APPROX_DELTAS_LAMMPS))
         for size in sizes:
             a, b = scaled_pair(base, size, rng)
             fa, fb = os.path.join(tmp, f"a{size}.json"), os.path.join(tmp, f"b{size}.json")
             write_pd1(fa, a)
             write_pd1(fb, b)
             compare(exe, f"perturbed copies {size}", fa, fb, a, b, 1)
-            pairs[size] = (fa, fb, a, b)
+            if size in APPROX_DELTAS:
+                approx.append((f"perturbed copies {size}", fa, fb, a, b, APPROX_DELTAS[size]))
 
-        approximate_mode(exe, pairs)
+        approximate_mode(exe, approx)
 
 
 APPROX_DELTAS = {1000: (0.5, 0.1, 0.01, 0.001), 5000: (0.1, 0.01, 0.001), 20000: (0.1, 0.01)}
+APPROX_DELTAS_LAMMPS = (0.2, 0.1, 0.05, 0.01)
 
 
 def approximate_mode(exe, pairs):
     """delta, time, the certified bound reached and the true error against the exact value, fnet
-    and Hera at the same delta, on the perturbed-copy pairs."""
+    and Hera at the same delta: pairs is a list of (label, A.json, B.json, a, b, deltas), pd1."""
     import gudhi.hera
-    print("\n== Approximate mode (pd1 of the perturbed-copy pairs): certified bounds against the exact value ==")
-    print(f"{'pts':>6}  {'metric':<8}{'delta':>8}{'fnet ms':>10}{'hera ms':>10}{'value':>16}{'lower':>16}"
+    print("\n== Approximate mode (pd1): certified bounds against the exact value ==")
+    print(f"{'pair':<36}{'metric':<8}{'delta':>8}{'fnet ms':>10}{'hera ms':>10}{'value':>16}{'lower':>16}"
           f"{'true rel err':>14}{'bound (u-l)/l':>15}{'hera rel err':>14}")
-    for size, (fa, fb, a, b) in pairs.items():
-        if size not in APPROX_DELTAS:
-            continue
+    for label, fa, fb, a, b, deltas in pairs:
         sa, sb = np.ascontiguousarray(a[:, ::-1]), np.ascontiguousarray(b[:, ::-1])
         for metric, q in (("W1", 1), ("W2", 2)):
             cli = {"W1": "wasserstein1", "W2": "wasserstein2"}[metric]
             exact, et, _, _ = fnet(exe, fa, fb, 1, cli, timeout=APPROX_TIMEOUT)
-            print(f"{size:>6}  {metric:<8}{0:>8g}{et*1e3:>10.1f}{float('nan'):>10.1f}{exact:>16.10g}{exact:>16.10g}"
+            print(f"{label:<36}{metric:<8}{0:>8g}{et*1e3:>10.1f}{float('nan'):>10.1f}{exact:>16.10g}{exact:>16.10g}"
                   f"{0:>14.2e}{0:>15.2e}{float('nan'):>14.2e}", flush=True)
-            for delta in APPROX_DELTAS[size]:
+            for delta in deltas:
                 v, t, lo, up = fnet(exe, fa, fb, 1, cli, delta, timeout=APPROX_TIMEOUT)
                 hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(sa, sb, order=q, internal_p=np.inf,
                                                                        delta=delta))
-                print(f"{size:>6}  {metric:<8}{delta:>8g}{t*1e3:>10.1f}{ht*1e3:>10.1f}{v:>16.10g}{lo:>16.10g}"
+                print(f"{label:<36}{metric:<8}{delta:>8g}{t*1e3:>10.1f}{ht*1e3:>10.1f}{v:>16.10g}{lo:>16.10g}"
                       f"{v / exact - 1:>14.2e}{(up - lo) / lo if lo else 0:>15.2e}{hv / exact - 1:>14.2e}", flush=True)
 
 
