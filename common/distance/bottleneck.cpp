@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -28,6 +29,10 @@ struct Side {
   std::vector<std::uint32_t> parent;    // local search: the point of the other side that reached it
   std::vector<std::uint32_t> by_coordinate[2];  // point indices by ascending x, by ascending y
   LinfKdTree tree;
+  // The points farther than forced_r from the diagonal (ascending indices) and their own tree.
+  std::vector<std::uint32_t> forced;
+  std::optional<LinfKdTree> forced_tree;
+  double forced_r = std::numeric_limits<double>::quiet_NaN();
 
   explicit Side(std::vector<PlanePoint> pts) : points(std::move(pts)), tree(points) {
     for (const PlanePoint p : points) diagonal.push_back(diagonal_distance(p));
@@ -321,14 +326,34 @@ class ThresholdMatcher {
     roots_.clear();
     layers_.clear();
     if (pending == 0) return 0;
-    s.tree.restore_all();
+    // Points of s not forced (diagonal <= r) are never on a path. Where they are most of s, the
+    // search runs on a tree of the forced ones alone, built once per threshold: in a dense
+    // threshold graph it would otherwise take every one of them from the tree.
+    LinfKdTree* tree = &s.tree;
+    const std::vector<std::uint32_t>* point_of = nullptr;  // the forced tree's points in s
+    std::size_t forced = 0;
+    for (const double d : s.diagonal) forced += d > r;
+    if (2 * forced < s.points.size()) {
+      if (!(s.forced_r == r)) {
+        s.forced.clear();
+        std::vector<PlanePoint> points;
+        for (std::uint32_t u = 0; u < s.points.size(); ++u)
+          if (s.diagonal[u] > r) s.forced.push_back(u), points.push_back(s.points[u]);
+        s.forced_tree.emplace(points);
+        s.forced_r = r;
+      }
+      tree = &*s.forced_tree;
+      point_of = &s.forced;
+    }
+    tree->restore_all();
     std::vector<std::uint32_t>& ends = layers_.emplace_back();
     for (std::size_t j = 0; j < o.points.size(); ++j)
       if (o.mate[j] < 0 || s.diagonal[o.mate[j]] <= r) ends.push_back(static_cast<std::uint32_t>(j));
     for (std::size_t k = 0; pending > 0 && !layers_[k].empty(); ++k) {
       next_.clear();
       for (const std::uint32_t v : layers_[k])
-        for (std::int64_t u; (u = s.tree.take_within(o.points[v], r)) >= 0;) {
+        for (std::int64_t t; (t = tree->take_within(o.points[v], r)) >= 0;) {
+          const std::int64_t u = point_of ? (*point_of)[static_cast<std::size_t>(t)] : t;
           if (s.diagonal[u] <= r) continue;  // never needs a path, nor is on one
           const std::int64_t w = s.mate[u];
           if (w < 0) {
@@ -342,9 +367,15 @@ class ThresholdMatcher {
       layers_.push_back(next_);
     }
     if (pending > 0) {
-      for (std::size_t i = 0; i < s.points.size(); ++i)
-        if (s.mate[i] < 0 && s.diagonal[i] > r && s.tree.is_present(static_cast<std::uint32_t>(i))) {
-          witness_ = static_cast<std::uint32_t>(i);
+      // A root still in the tree: no end reached it.
+      const auto reached = [&](std::uint32_t i) {
+        if (!point_of) return !s.tree.is_present(i);
+        const auto at = std::lower_bound(point_of->begin(), point_of->end(), i);
+        return !tree->is_present(static_cast<std::uint32_t>(at - point_of->begin()));
+      };
+      for (std::uint32_t i = 0; i < s.points.size(); ++i)
+        if (s.mate[i] < 0 && s.diagonal[i] > r && !reached(i)) {
+          witness_ = i;
           break;
         }
       return pending;
