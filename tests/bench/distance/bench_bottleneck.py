@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from compare_anchors import finite, scaled_pair, write_pd1
+from compare_anchors import finite, random_pair, scaled_pair, write_pd1
 
 
 def pd1_like(size, rng):
@@ -45,25 +45,6 @@ def pd1_like(size, rng):
 
 
 HERA_TIMEOUT = 60
-
-
-def random_pair(size, rng):
-    births = rng.random(size) * 5
-    deaths = births * rng.random(size)
-    deaths[rng.random(size) < 0.15] = 0.0
-    a = np.stack([births, deaths], axis=1)
-    dup = rng.random(size) < 0.1
-    a[dup] = a[rng.integers(0, size, int(dup.sum()))]
-    b = a + rng.uniform(-0.001, 0.001, a.shape)
-    b[a[:, 1] == 0, 1] = 0.0
-    b[:, 0] = np.maximum(b[:, 0], 0.0)
-    b[:, 1] = np.clip(b[:, 1], 0.0, b[:, 0])
-    b = b[rng.random(size) > 0.03]
-    picked = a[rng.integers(0, size, size // 30)]
-    picked = picked[picked[:, 1] > 0]  # as tests/common/distance: never-dying classes spawn none
-    mids = (picked[:, 0] + picked[:, 1]) / 2
-    b = np.concatenate([b, np.stack([mids + 0.001 * rng.random(len(mids)), mids], axis=1)])
-    return a[a[:, 0] > a[:, 1]], b[b[:, 0] > b[:, 1]]
 
 
 def ours(exe, fa, fb, repeat):

@@ -3,9 +3,12 @@
 usage: compare_anchors.py FNET_ANALYZE [--sizes 1000,5000,20000] A.json B.json [A2.json B2.json ...]
 
 1. Each LAMMPS pair on pd0 and pd1 (floor convention: never-dying classes die at 0, so every tool
-   sees the same finite diagrams), then the sum of fnet's twelve distances per frame pair.
+   sees the same finite diagrams), with d_B + W1 + W2 against Hera per pair and dimension, fnet's
+   computation and its whole process (`fnet-analyze distance`, median of 5 runs of each metric);
+   then the sum of fnet's twelve distances per frame pair.
 2. Larger pairs built from the last pair's pd1 (copies with jitter, then a perturbed copy: what
-   consecutive frames look like): ~1 000, 5 000 and 20 000 points.
+   consecutive frames look like): ~1 000, 5 000 and 20 000 points; then random pairs of those sizes
+   shaped like consecutive frames (random_pair: few points on a common line).
 3. The approximate mode on the LAMMPS pairs' pd1, then at 1 000, 5 000 and 20 000 points: delta, time,
    the certified bound, the true relative error against the exact value, fnet and Hera at the same
    delta.
@@ -92,16 +95,40 @@ def rel(x, v):
     return (x / v - 1) if v and x == x else (0.0 if x == v else float("nan"))
 
 
-def compare(exe, name, fa, fb, a, b, dim):
-    total = 0.0
+def whole_process(exe, fa, fb, dim, metric, runs):
+    """Median wall time of `fnet-analyze distance` as a user runs it: start-up, reading the two
+    documents, the computation, writing the answer."""
+    cmd = [exe, "distance", fa, fb, "--metric", metric, "--dim", str(dim)]
+    times = []
+    for _ in range(runs):
+        t = time.perf_counter()
+        subprocess.run(cmd, capture_output=True, check=True)
+        times.append(time.perf_counter() - t)
+    return sorted(times)[len(times) // 2]
+
+
+WHOLE_RUNS = 5
+
+
+def compare(exe, name, fa, fb, a, b, dim, whole=False):
+    """The three metrics' rows; with whole, then the line d_B + W1 + W2 against Hera, fnet's
+    computation and its whole process (median of WHOLE_RUNS runs of each command)."""
+    total, whole_total, hera_total = 0.0, 0.0, 0.0
     for metric, q in (("bottleneck", None), ("W1", 1), ("W2", 2)):
         cli = {"bottleneck": "bottleneck", "W1": "wasserstein1", "W2": "wasserstein2"}[metric]
         v, t, _, _ = fnet(exe, fa, fb, dim, cli)
         total += t
         hv, ht, pv, pt, gv, gt = anchors(a, b, q)
+        hera_total += ht
+        if whole:
+            whole_total += whole_process(exe, fa, fb, dim, cli, WHOLE_RUNS)
         print(f"{name:<36}{dim:>4}{max(len(a), len(b)):>7}  {metric:<11}{t*1e3:>10.1f}{ht*1e3:>10.1f}{pt*1e3:>10.1f}"
               f"{gt*1e3:>10.1f}{ht / t if t else float('inf'):>10.1f}x  {v:>14.8g}{rel(hv, v):>13.2e}{rel(pv, v):>12.2e}"
               f"{rel(gv, v):>13.2e}", flush=True)
+    if whole:
+        print(f"{name:<36}{dim:>4}  d_B + W1 + W2: Hera {hera_total*1e3:.1f} ms; fnet computation {total*1e3:.1f} ms "
+              f"({hera_total / total:.1f}x), whole process {whole_total*1e3:.1f} ms ({hera_total / whole_total:.1f}x)",
+              flush=True)
     return total
 
 
@@ -128,6 +155,28 @@ def scaled_pair(base, size, rng):
     return a, b
 
 
+def random_pair(size, rng):
+    """Births uniform in [0, 5], deaths uniform below, 15 % never-dying (death 0 under floor), 10 %
+    duplicates; B moved by up to 0.001, 3 % dropped, 3 % added near the diagonal (the shape of
+    tests/common/distance/large_inputs_test.cpp): few points on one line, no line start."""
+    births = rng.random(size) * 5
+    deaths = births * rng.random(size)
+    deaths[rng.random(size) < 0.15] = 0.0
+    a = np.stack([births, deaths], axis=1)
+    dup = rng.random(size) < 0.1
+    a[dup] = a[rng.integers(0, size, int(dup.sum()))]
+    b = a + rng.uniform(-0.001, 0.001, a.shape)
+    b[a[:, 1] == 0, 1] = 0.0
+    b[:, 0] = np.maximum(b[:, 0], 0.0)
+    b[:, 1] = np.clip(b[:, 1], 0.0, b[:, 0])
+    b = b[rng.random(size) > 0.03]
+    picked = a[rng.integers(0, size, size // 30)]
+    picked = picked[picked[:, 1] > 0]  # as tests/common/distance: never-dying classes spawn none
+    mids = (picked[:, 0] + picked[:, 1]) / 2
+    b = np.concatenate([b, np.stack([mids + 0.001 * rng.random(len(mids)), mids], axis=1)])
+    return a[a[:, 0] > a[:, 1]], b[b[:, 0] > b[:, 1]]
+
+
 def main(argv):
     exe = argv[1]
     files = argv[2:]
@@ -145,14 +194,14 @@ def main(argv):
         da, db = json.load(open(fa)), json.load(open(fb))
         for dim in (0, 1):
             a, b = finite(da[f"pd{dim}"]), finite(db[f"pd{dim}"])
-            sums[frames] = sums.get(frames, 0.0) + compare(exe, name, fa, fb, a, b, dim)
+            sums[frames] = sums.get(frames, 0.0) + compare(exe, name, fa, fb, a, b, dim, whole=True)
     for frames, s in sums.items():
         print(f"fnet, twelve exact distances of {frames} (d_B, W1, W2 x pd0, pd1 x normal, tangential): "
               f"{s*1e3:.1f} ms")
 
     base = finite(json.load(open(files[-1]))["pd1"])
     rng = np.random.default_rng(2026)
-    print("\n== Larger pairs: jittered copies of the last pair's pd1, B a perturbed copy of A ==")
+    print("\n== Larger pairs: jittered copies of the last pair's pd1 (then random pairs), B a perturbed copy of A ==")
     print(HEADER)
     with tempfile.TemporaryDirectory() as tmp:
         # The LAMMPS pairs first, then the perturbed copies.
@@ -169,6 +218,12 @@ def main(argv):
             compare(exe, f"perturbed copies {size}", fa, fb, a, b, 1)
             if size in APPROX_DELTAS:
                 approx.append((f"perturbed copies {size}", fa, fb, a, b, APPROX_DELTAS[size]))
+        for size in sizes:
+            a, b = random_pair(size, rng)
+            fa, fb = os.path.join(tmp, f"ra{size}.json"), os.path.join(tmp, f"rb{size}.json")
+            write_pd1(fa, a)
+            write_pd1(fb, b)
+            compare(exe, f"random {size}", fa, fb, a, b, 1)
 
         approximate_mode(exe, approx)
 
