@@ -129,7 +129,9 @@ class ThresholdMatcher {
     // right of a) whose ends only move forward as a moves forward: a sweep per coordinate finds
     // them, so the cost is the pairs in those runs, not a range search per point. Differences
     // are compared as computed (rounding is monotone), so the runs hold exactly those pairs.
-    constexpr std::size_t kRunsPerCandidate = 8;  // the runs hold ~2-6x the candidates on these diagrams
+    // The runs also hold the pairs whose other difference is the larger: allowed up to 8 per
+    // candidate before the listing gives up.
+    constexpr std::size_t kRunsPerCandidate = 8;
     std::size_t in_runs = 0;
     for (const Axis axis : {Axis::x, Axis::y})
       sweep_runs(axis, lo, hi, [&](std::uint32_t, std::uint32_t first, std::uint32_t last) { in_runs += last - first; });

@@ -793,8 +793,8 @@ void DiagonalFlow::solve(double accept_ratio) {
     // the complete graph, which keep the certificate (the sparse searches would lose it on the
     // arcs into their flat-cost windows, and repair rounds then reroute hundreds of rows).
     pair_penalty_ = 0;
-    // Approximate: the line's points are matched optimally among themselves already; matched
-    // apart, optimally too, the free points may already give a matching within the ratio.
+    // Approximate: the line's points are matched optimally among themselves already; with the
+    // loose points matched apart, optimally too, the matching may already be within the ratio.
     if (accept_ratio > 1) {
       lower_free_rows();
       const double lower = dual_bound();

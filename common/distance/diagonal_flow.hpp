@@ -205,8 +205,8 @@ class DiagonalFlow {
   // The loose points (free, or on the diagonal) matched among themselves and the diagonal,
   // optimally (a solve of their own), the flow's pairs kept; taken (true) when the whole matching
   // then costs <= target. After the line start, whose pairs match the line's points optimally among
-  // themselves, this matching costs 0.5-6 % more than the optimum on the LAMMPS PD1 pairs (W1;
-  // up to 17 % for W2). Ends an approximate solve, as complete_free_rows() does.
+  // themselves, this matching costs 0.1-3.3 % more than the optimum on the LAMMPS PD1 pairs for
+  // W1, 1.8-17 % (sums of squares) for W2. Ends an approximate solve, as complete_free_rows() does.
   bool match_free_points_apart(double target);
   // A matching from the flow: free rows on the diagonal or, where cheaper, on a candidate whose
   // partner goes to the diagonal; taken (true) when it costs <= target. Ends an approximate solve:
