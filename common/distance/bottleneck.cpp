@@ -24,9 +24,9 @@ double diagonal_distance(PlanePoint p) { return std::fabs(p.x - p.y) / 2; }
 struct Side {
   std::vector<PlanePoint> points;
   std::vector<double> diagonal;
-  std::vector<std::int64_t> mate;       // index on the other side, -1 if unmatched
-  std::vector<std::uint32_t> by_birth;  // point indices, largest birth first
-  std::vector<std::uint32_t> parent;    // local search: the point of the other side that reached it
+  std::vector<std::int64_t> mate;               // index on the other side, -1 if unmatched
+  std::vector<std::uint32_t> by_birth;          // point indices, largest birth first
+  std::vector<std::uint32_t> parent;            // local search: the point of the other side that reached it
   std::vector<std::uint32_t> by_coordinate[2];  // point indices by ascending x, by ascending y
   LinfKdTree tree;
   // The points farther than forced_r from the diagonal (ascending indices) and their own tree.
@@ -134,7 +134,8 @@ class ThresholdMatcher {
     constexpr std::size_t kRunsPerCandidate = 8;
     std::size_t in_runs = 0;
     for (const Axis axis : {Axis::x, Axis::y})
-      sweep_runs(axis, lo, hi, [&](std::uint32_t, std::uint32_t first, std::uint32_t last) { in_runs += last - first; });
+      sweep_runs(axis, lo, hi,
+                 [&](std::uint32_t, std::uint32_t first, std::uint32_t last) { in_runs += last - first; });
     if (in_runs > kRunsPerCandidate * limit) {
       estimate = static_cast<double>(in_runs) / kRunsPerCandidate;
       return false;
