@@ -630,11 +630,7 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
   const auto good_enough = [&] {
     if (accept_ratio <= 1 || ++since < stride) return false;
     since = 0;
-    lower_free_rows();
-    const double lower = dual_bound();
-    if (!(lower > 0)) return false;
-    if (primal_cost() <= accept_ratio * lower) return true;
-    return complete_free_rows(accept_ratio * lower);
+    return finished_within(accept_ratio, &DiagonalFlow::complete_free_rows);
   };
   while (static_cast<std::int64_t>(m_) - b_from_diagonal_ - flow_hub_ > 0) {
     if (!dijkstra(ha_)) throw std::logic_error("diagonal flow: no augmenting path from the diagonal");
@@ -648,10 +644,18 @@ bool DiagonalFlow::augment_all(double accept_ratio) {
   return false;
 }
 
+bool DiagonalFlow::finished_within(double accept_ratio, bool (DiagonalFlow::*finish)(double)) {
+  lower_free_rows();
+  const double lower = dual_bound();
+  return lower > 0 && (this->*finish)(accept_ratio * lower);
+}
+
 bool DiagonalFlow::complete_free_rows(double target) {
-  // Each free row, now on the diagonal, may take a candidate b_j instead, sending b_j's partner to
-  // the diagonal (or b_j leaving it): the best such change per row, each b_j at most once, in
-  // row order. Applied only when the matching then costs <= target.
+  // The flow as it is (free rows on the diagonal) when that is enough. Otherwise each free row may
+  // take a candidate b_j instead, sending b_j's partner to the diagonal (or b_j leaving it): the
+  // best such change per row, each b_j at most once, in row order. Applied only when the matching
+  // then costs <= target.
+  if (primal_cost() <= target) return true;
   struct Swap {
     std::uint32_t row, column;
     double cost;
@@ -795,11 +799,7 @@ void DiagonalFlow::solve(double accept_ratio) {
     pair_penalty_ = 0;
     // Approximate: the line's points are matched optimally among themselves already; with the
     // loose points matched apart, optimally too, the matching may already be within the ratio.
-    if (accept_ratio > 1) {
-      lower_free_rows();
-      const double lower = dual_bound();
-      if (lower > 0 && match_free_points_apart(accept_ratio * lower)) return;
-    }
+    if (accept_ratio > 1 && finished_within(accept_ratio, &DiagonalFlow::match_free_points_apart)) return;
     solve_complete(accept_ratio);
     return;
   }

@@ -202,6 +202,9 @@ class DiagonalFlow {
   // (true) once primal_cost() <= accept_ratio * dual_bound(), the free points on the diagonal.
   bool augment_all(double accept_ratio = 1);
   void lower_free_rows();  // each free row's potential to the least feasible value
+  // Approximate solves: the free rows lowered, whether finish(accept_ratio * dual bound) found a
+  // matching that costs no more (finish: complete_free_rows or match_free_points_apart).
+  bool finished_within(double accept_ratio, bool (DiagonalFlow::*finish)(double));
   // The loose points (free, or on the diagonal) matched among themselves and the diagonal,
   // optimally (a solve of their own), the flow's pairs kept; taken (true) when the whole matching
   // then costs <= target. After the line start, whose pairs match the line's points optimally among
@@ -209,7 +212,8 @@ class DiagonalFlow {
   // W1, 1.8-17 % (sums of squares) for W2. Ends an approximate solve, as complete_free_rows() does.
   bool match_free_points_apart(double target);
   // A matching from the flow: free rows on the diagonal or, where cheaper, on a candidate whose
-  // partner goes to the diagonal; taken (true) when it costs <= target. Ends an approximate solve:
+  // partner goes to the diagonal (the flow untouched when it costs <= target as it is); taken
+  // (true) when it costs <= target. Ends an approximate solve:
   // the flow is no longer one the searches can go on from.
   bool complete_free_rows(double target);
 
