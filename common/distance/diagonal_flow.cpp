@@ -39,6 +39,8 @@ DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlaneP
       mate_b_(m_, kNone),
       mate_cost_a_(n_, 0),
       pi_(n_ + m_ + 2, 0.0),
+      hub_a_(m_),
+      hub_b_(n_),
       key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()),
       dist_(n_ + m_ + 2, kInf),
       pred_cost_(n_ + m_ + 2, 0),
@@ -393,12 +395,13 @@ void DiagonalFlow::refresh(std::uint32_t node) {
   }
   auto& set = is_a(node) ? hub_b_ : hub_a_;
   const std::uint32_t index = is_a(node) ? node : b_of_node(node);
-  if (!std::isnan(key_[node])) {
-    if (key_[node] == want) return;
-    set.erase({key_[node], index});
-  }
+  if (key_[node] == want || (!filed && std::isnan(key_[node]))) return;
   key_[node] = want;
-  if (filed) set.insert({want, index});
+  if (filed) {
+    set.set(index, want);
+  } else {
+    set.erase(index);
+  }
 }
 
 bool DiagonalFlow::is_sink(std::uint32_t v) const {
@@ -426,7 +429,7 @@ void DiagonalFlow::relax(std::uint32_t v, double d, std::uint32_t from, double c
   if (d <= current_ && early_ < 0 && is_sink(v)) early_ = v;
 }
 
-const DiagonalFlow::Arcs& DiagonalFlow::stream_arcs(int stream) const { return stream == kStreamHa ? hub_a_ : hub_b_; }
+KeyedIndex& DiagonalFlow::stream_arcs(int stream) { return stream == kStreamHa ? hub_a_ : hub_b_; }
 
 std::uint32_t DiagonalFlow::stream_node(int stream, std::uint32_t index) const {
   return stream == kStreamHa ? node_of_b(index) : index;
@@ -435,30 +438,31 @@ std::uint32_t DiagonalFlow::stream_node(int stream, std::uint32_t index) const {
 std::uint32_t DiagonalFlow::stream_hub(int stream) const { return stream == kStreamHa ? ha_ : hb_; }
 
 bool DiagonalFlow::skip_settled(int stream) {
-  const Arcs& arcs = stream_arcs(stream);
-  Cursor& c = cursor_[stream];
-  while (c != arcs.end() && final_[stream_node(stream, c->second)] == run_) ++c;
-  return c != arcs.end();
+  KeyedIndex& arcs = stream_arcs(stream);
+  while (!arcs.walk_done() && final_[stream_node(stream, arcs.walk_head().second)] == run_) arcs.walk_next();
+  return !arcs.walk_done();
 }
 
 void DiagonalFlow::push_stream(int stream) {
   if (!skip_settled(stream)) return;
-  push(hub_dist_[stream] + std::max(0.0, pi_[stream_hub(stream)] + cursor_[stream]->first), stream_entry(stream));
+  push(hub_dist_[stream] + std::max(0.0, pi_[stream_hub(stream)] + stream_arcs(stream).walk_head().first),
+       stream_entry(stream));
 }
 
 void DiagonalFlow::start_stream(int stream, double d) {
   hub_dist_[stream] = d;
-  cursor_[stream] = stream_arcs(stream).begin();
+  stream_arcs(stream).walk_start();
   push_stream(stream);
 }
 
 void DiagonalFlow::pop_stream(int stream) {
   if (!skip_settled(stream)) return;
-  Cursor& c = cursor_[stream];
+  KeyedIndex& arcs = stream_arcs(stream);
+  const auto [key, index] = arcs.walk_head();
   const std::uint32_t hub = stream_hub(stream);
-  const double arc_cost = stream == kStreamHa ? db_[c->second] : -da_[c->second];
-  relax(stream_node(stream, c->second), hub_dist_[stream] + std::max(0.0, pi_[hub] + c->first), hub, arc_cost);
-  ++c;
+  const double arc_cost = stream == kStreamHa ? db_[index] : -da_[index];
+  relax(stream_node(stream, index), hub_dist_[stream] + std::max(0.0, pi_[hub] + key), hub, arc_cost);
+  arcs.walk_next();
   push_stream(stream);
 }
 

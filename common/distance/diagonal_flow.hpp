@@ -35,11 +35,11 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <set>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "common/distance/keyed_index.hpp"
 #include "common/distance/linf_kdtree.hpp"
 #include "common/distance/quaternary_heap.hpp"
 #include "common/distance/sorted_birth_seed.hpp"
@@ -136,11 +136,10 @@ class DiagonalFlow {
   void relax(std::uint32_t v, double d, std::uint32_t from, double cost);
   void scan(std::uint32_t u, double d);
   // The hubs' arcs are offered lazily, in key order, as one heap entry per hub at a time.
-  using Arcs = std::set<std::pair<double, std::uint32_t>>;  // (key, index of a_i or b_j)
-  const Arcs& stream_arcs(int stream) const;
+  KeyedIndex& stream_arcs(int stream);  // (key, index of a_i or b_j)
   std::uint32_t stream_node(int stream, std::uint32_t index) const;
   std::uint32_t stream_hub(int stream) const;
-  bool skip_settled(int stream);            // moves the cursor past settled heads; false at the end
+  bool skip_settled(int stream);            // walks past settled heads; false at the end
   void push_stream(int stream);             // files the stream's next arc in the heap
   void start_stream(int stream, double d);  // the hub is settled at distance d
   void pop_stream(int stream);              // relaxes the stream's next arc
@@ -165,10 +164,8 @@ class DiagonalFlow {
 
   // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
   // to the diagonal, keyed -da_i - pi(a_i).
-  Arcs hub_a_, hub_b_;
-  std::vector<double> key_;  // the key a node is filed under, NaN if not filed
-  using Cursor = Arcs::const_iterator;
-  Cursor cursor_[2];             // per stream: the next arc to offer
+  KeyedIndex hub_a_, hub_b_;     // each walked from its head when its hub is settled
+  std::vector<double> key_;      // the key a node is filed under, NaN if not filed
   double hub_dist_[2] = {0, 0};  // per stream: the distance of its hub
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall

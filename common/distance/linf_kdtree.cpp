@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <queue>
 #include <utility>
 
 namespace fnet {
@@ -75,49 +74,42 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64 finalizer
 void LinfKdTree::nearest(PlanePoint q, std::size_t k, std::vector<std::uint32_t>& out, std::uint64_t salt) const {
   out.clear();
   if (nodes_.empty() || k == 0) return;
-  // Max-heap of the best k so far as (distance, tie-break, point); best-first descent by box
-  // distance. With a salt, boxes at exactly the worst distance are still opened: they may win the
-  // tie-break.
-  struct Best {
-    double d;
-    std::uint64_t tie;
-    std::uint32_t p;
-    bool operator<(const Best& o) const { return d != o.d ? d < o.d : tie < o.tie; }
-  };
-  std::vector<Best> best;
-  best.reserve(k + 1);
-  auto worst = [&] { return best.size() < k ? std::numeric_limits<double>::infinity() : best.front().d; };
-  using Entry = std::pair<double, std::int32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> frontier;
-  frontier.push({0.0, 0});
+  // The best k so far as (distance, tie-break, point), ascending; depth first, nearer child first,
+  // pruned by the k-th best. With a salt, boxes at exactly the worst distance are still opened:
+  // they may win the tie-break. Scratch space is the tree's: a query allocates nothing.
+  std::vector<NearBest>& best = near_best_;
+  best.clear();
   const std::uint64_t seed = mix(salt);
-  while (!frontier.empty()) {
-    const auto [dist, id] = frontier.top();
-    frontier.pop();
-    if (dist > worst() || (salt == 0 && dist == worst())) break;
+  const auto worth_opening = [&](double d) {
+    if (best.size() < k) return true;
+    return d < best.back().d || (salt != 0 && d == best.back().d);
+  };
+  near_stack_.assign(1, {0.0, 0});
+  while (!near_stack_.empty()) {
+    const auto [dist, id] = near_stack_.back();
+    near_stack_.pop_back();
+    if (!worth_opening(dist)) continue;
     const Node& node = nodes_[id];
     if (node.left < 0) {
       for (std::uint32_t s = node.begin; s < node.end; ++s) {
         const std::uint32_t p = order_[s];
-        const Best candidate{linf_distance(points_[p], q), salt == 0 ? p : mix(seed ^ p), p};
-        if (best.size() < k) {
-          best.push_back(candidate);
-          std::push_heap(best.begin(), best.end());
-        } else if (candidate < best.front()) {
-          std::pop_heap(best.begin(), best.end());
-          best.back() = candidate;
-          std::push_heap(best.begin(), best.end());
+        const NearBest candidate{linf_distance(points_[p], q), salt == 0 ? p : mix(seed ^ p), p};
+        if (best.size() == k) {
+          if (!(candidate < best.back())) continue;
+          best.pop_back();
         }
+        best.insert(std::upper_bound(best.begin(), best.end(), candidate), candidate);
       }
       continue;
     }
-    for (const std::int32_t child : {node.left, node.right}) {
-      const double d = box_distance(nodes_[child], q);
-      if (d < worst() || (salt != 0 && d == worst())) frontier.push({d, child});
+    const double dl = box_distance(nodes_[node.left], q), dr = box_distance(nodes_[node.right], q);
+    if (dl <= dr) {
+      near_stack_.push_back({dr, node.right}), near_stack_.push_back({dl, node.left});
+    } else {
+      near_stack_.push_back({dl, node.left}), near_stack_.push_back({dr, node.right});
     }
   }
-  std::sort_heap(best.begin(), best.end());
-  for (const Best& b : best) out.push_back(b.p);
+  for (const NearBest& b : best) out.push_back(b.p);
 }
 
 double LinfKdTree::nearest_distance(PlanePoint q, double cap, double floor) const {

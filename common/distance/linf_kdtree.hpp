@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/distance/essential_convention.hpp"
@@ -68,6 +69,14 @@ class LinfKdTree {
   std::vector<std::uint32_t> erased_list_;
   std::vector<std::int32_t> stack_;
   mutable std::vector<std::int32_t> const_stack_;
+  struct NearBest {  // nearest(): a point found, ordered by distance, then tie-break
+    double d;
+    std::uint64_t tie;
+    std::uint32_t p;
+    bool operator<(const NearBest& o) const { return d != o.d ? d < o.d : tie < o.tie; }
+  };
+  mutable std::vector<NearBest> near_best_;
+  mutable std::vector<std::pair<double, std::int32_t>> near_stack_;  // (box distance, node)
 };
 
 }  // namespace fnet
