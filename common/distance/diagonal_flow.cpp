@@ -46,7 +46,8 @@ DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlaneP
       pred_cost_(n_ + m_ + 2, 0),
       pred_(n_ + m_ + 2, 0),
       seen_(n_ + m_ + 2, 0),
-      final_(n_ + m_ + 2, 0) {
+      final_(n_ + m_ + 2, 0),
+      heap_(n_ + m_ + 2) {
   for (std::uint32_t j = 0; j < m_; ++j) refresh(node_of_b(j));
   pa_.assign(a.begin(), a.end());
   tree_b_ = std::make_unique<LinfKdTree>(b);
