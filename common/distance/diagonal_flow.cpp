@@ -371,6 +371,19 @@ void DiagonalFlow::open_box(std::uint32_t i, std::int32_t node) {
   }
 }
 
+std::int32_t DiagonalFlow::home_leaf(std::uint32_t i) {
+  if (home_leaf_.empty()) home_leaf_.assign(n_, -1);
+  if (home_leaf_[i] >= 0) return home_leaf_[i];
+  const auto nodes = tree_b_->nodes();
+  std::int32_t k = 0;
+  while (nodes[k].left >= 0) {
+    const auto& left = nodes[nodes[k].left];
+    const auto& right = nodes[nodes[k].right];
+    k = tree_b_->box_distance(left, pa_[i]) <= tree_b_->box_distance(right, pa_[i]) ? nodes[k].left : nodes[k].right;
+  }
+  return home_leaf_[i] = k;
+}
+
 void DiagonalFlow::update_box_maxima(std::uint32_t j) {
   for (std::int32_t k = leaf_of_b_[j]; k >= 0 && recompute_box(k); k = box_parent_[k]) {
   }
@@ -480,12 +493,22 @@ void DiagonalFlow::scan(std::uint32_t u, double d) {
     if (mate_a_[u] != kDiagonal) relax(hb_, d + std::max(0.0, da_[u] + pu - pi_[hb_]), u, da_[u]);
   } else if (is_a(u)) {
     if (!tree_b_->nodes().empty()) {
-      const double key = box_key(u, 0);
-      if (key <= d) {
-        open_box(u, 0);
-      } else if (key < kInf) {
-        push_box(u, 0, key);
-      }
+      // The tree entered from a_u's home leaf upwards: that leaf, then the sibling of each box on
+      // the way to the root. The same boxes as from the root down, each by its own key, without
+      // keying the boxes on the way, which every settled row used to open.
+      const auto nodes = tree_b_->nodes();
+      const auto enter = [&](std::int32_t k) {
+        const double key = box_key(u, k);
+        if (key <= d) {
+          open_box(u, k);
+        } else if (key < kInf) {
+          push_box(u, k, key);
+        }
+      };
+      std::int32_t k = home_leaf(u);
+      enter(k);
+      for (std::int32_t parent; (parent = box_parent_[k]) >= 0; k = parent)
+        enter(nodes[parent].left == k ? nodes[parent].right : nodes[parent].left);
     }
     if (mate_a_[u] != kDiagonal) relax(hb_, d + std::max(0.0, da_[u] + pi_[u] - pi_[hb_]), u, da_[u]);
   } else if (is_b(u)) {

@@ -41,7 +41,7 @@
 
 #include "common/distance/keyed_index.hpp"
 #include "common/distance/linf_kdtree.hpp"
-#include "common/distance/quaternary_heap.hpp"
+#include "common/distance/monotone_heap.hpp"
 #include "common/distance/sorted_birth_seed.hpp"
 
 namespace fnet {
@@ -152,6 +152,9 @@ class DiagonalFlow {
   double box_key(std::uint32_t i, std::int32_t node) const;
   void open_box(std::uint32_t i, std::int32_t node);
   void update_box_maxima(std::uint32_t j);
+  // The leaf of the tree over B nearest a_i (by box distance, from the root down), found once.
+  std::int32_t home_leaf(std::uint32_t i);
+  std::vector<std::int32_t> home_leaf_;
 
   std::uint32_t n_, m_, ha_, hb_;
   ArcPower power_;
@@ -259,7 +262,7 @@ class DiagonalFlow {
   std::vector<double> dist_, pred_cost_;
   std::vector<std::uint32_t> pred_, seen_, final_;
   std::vector<std::uint32_t> finalized_, path_;
-  QuaternaryHeap heap_;
+  MonotoneHeap heap_;
   std::size_t augmentations_ = 0, settled_ = 0, boxes_opened_ = 0;
 };
 
