@@ -6,14 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "common/codec/diagram_json.hpp"
 #include "common/distance/bottleneck.hpp"
+#include "tests/bench/distance/bench_inputs.hpp"
 
 using namespace fnet;
 
@@ -33,13 +30,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: bench_bottleneck [--repeat R] [--dim 0|1] A.json B.json [...]\n");
     return 2;
   }
-  const auto load = [dim](const std::string& path) {
-    std::ifstream in(path);
-    const nlohmann::json j = nlohmann::json::parse(in);
-    return diagram_from_json(j.at(dim ? "pd1" : "pd0"));
-  };
   for (std::size_t f = 0; f < files.size(); f += 2) {
-    const Diagram a = load(files[f]), b = load(files[f + 1]);
+    const Diagram a = bench::load_diagram(files[f], dim), b = bench::load_diagram(files[f + 1], dim);
     std::vector<double> times;
     double value = 0;
     for (int r = 0; r < repeat; ++r) {

@@ -10,33 +10,15 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "common/codec/diagram_json.hpp"
 #include "common/distance/bottleneck.hpp"
 #include "common/distance/wasserstein.hpp"
+#include "tests/bench/distance/bench_inputs.hpp"
 
 using namespace fnet;
 
 int main(int argc, char** argv) {
-  int repeat = 5;
-  std::vector<std::string> files;
-  for (int k = 1; k < argc; ++k) {
-    const std::string arg = argv[k];
-    if (arg == "--repeat" && k + 1 < argc)
-      repeat = std::max(1, std::atoi(argv[++k]));
-    else
-      files.push_back(arg);
-  }
-  if (files.empty() || files.size() % 2) {
-    std::fprintf(stderr, "usage: bench_distance [--repeat R] A.json B.json [...]\n");
-    return 2;
-  }
-  const auto load = [](const std::string& path, int dim) {
-    std::ifstream in(path);
-    const nlohmann::json j = nlohmann::json::parse(in);
-    return diagram_from_json(j.at(dim ? "pd1" : "pd0"));
-  };
+  const auto [repeat, files] = bench::parse_pair_args(argc, argv, "bench_distance", 5);
+  const auto load = bench::load_diagram;
   std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s %s\n", "pair", "dim", "pts", "metric", "ms", "value", "augment",
               "settled/boxes", "arcs rounds repaired complete");
   for (std::size_t f = 0; f < files.size(); f += 2) {
@@ -55,8 +37,7 @@ int main(int argc, char** argv) {
         std::sort(times.begin(), times.end());
         const double t = times[times.size() / 2];
         pair_total += t;
-        const std::string name =
-            files[f].substr(files[f].rfind('/') + 1) + "->" + files[f + 1].substr(files[f + 1].rfind('/') + 1);
+        const std::string name = bench::pair_name(files[f], files[f + 1]);
         std::printf("%-44s %3d %6zu  %-10s %10.2f %10.6g %8zu %10zu/%zu %zu %zu %zu %d\n", name.c_str(), dim,
                     std::max(a.size(), b.size()),
                     q == 0   ? "bottleneck"
