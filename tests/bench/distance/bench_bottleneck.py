@@ -86,7 +86,7 @@ def main(argv):
         hera_child(argv[2], argv[3])
         return
     exe, files = argv[1], argv[2:]
-    print("shared-machine figures; fnet exact, Hera at delta = 0.01")
+    print("fnet exact (median of in-process repeats), Hera at delta = 0.01")
     print(f"{'pair':<36}{'pts':>7}{'fnet ms':>11}{'hera ms':>11}{'hera/fnet':>11}  {'fnet value':>20}"
           f"{'hera/fnet-1':>12}")
     for k in range(0, len(files), 2):
