@@ -3,8 +3,9 @@
 //   a_i -> b_j   cost c_ij, a_i -> HB cost da_i (a_i to the diagonal),
 //   HA  -> b_j   cost db_j (b_j from the diagonal),  HA -> HB cost 0, unbounded.
 // Supplies: a_i 1, HA m; demands: b_j 1, HB n. Solved by successive shortest paths (Dijkstra with
-// potentials, early exit); the hubs' many arcs are scanned lazily from ordered sets, so a search
-// costs what it visits, not O(n + m). Internal to the Wasserstein distance.
+// potentials, early exit, a radix heap: monotone_heap.hpp); the hubs' many arcs are scanned lazily,
+// in key order, from indexed heaps (keyed_index.hpp), so a search costs what it visits, not
+// O(n + m). Internal to the Wasserstein distance.
 //
 // Pair arcs: every pair (a_i, b_j) with c_ij < da_i + db_j (the others never beat sending both to
 // the diagonal), never stored. solve() works in three stages ("seed, solve sparse, certify"):
@@ -14,12 +15,13 @@
 //     pi(b)). A row with a violated arc gets its best arc added, its potential raised to feasible
 //     and is freed (with its partner) for the searches to route again; a few rounds.
 //  3. Complete: rows still violating after those rounds are repaired the same way and finished by
-//     searches on the complete graph: when Dijkstra settles a_i it enters the 2-d tree over B as
-//     heap entries keyed by a lower bound on the reduced cost of any arc into a box: power(box
-//     distance) + pi(a_i) - max pi(b) over the box (when costs are the lengths themselves also the
-//     bounds from |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow
-//     potentials sloping across the box). Boxes are opened best first, boxes whose points are all
-//     settled are skipped, so this search is exact on the complete graph.
+//     searches on the complete graph: when Dijkstra settles a_i it enters the 2-d tree over B
+//     (its nearest leaf, then that leaf's ancestors' other children) as heap entries keyed by a
+//     lower bound on the reduced cost of any arc into a box: power(box distance) + pi(a_i) -
+//     max pi(b) over the box (when costs are the lengths themselves also the bounds from
+//     |x_i - x_j| and |y_i - y_j| against max pi(b) -+ x_b, -+ y_b, which follow potentials
+//     sloping across the box). Boxes are opened best first, boxes whose points are all settled
+//     are skipped, so this search is exact on the complete graph.
 // Either way the answer ends certified: every pair arc checked (stage 2) or searched (stage 3).
 // Where most points lie on one death line (floor PD1s, ~90 %), the flow starts instead from the
 // programme's optimal matching of those points, whose potentials come from label-correcting sweeps
