@@ -41,7 +41,6 @@ DiagonalFlow::DiagonalFlow(std::span<const PlanePoint> a, std::span<const PlaneP
       pi_(n_ + m_ + 2, 0.0),
       hub_a_(m_),
       hub_b_(n_),
-      key_(n_ + m_ + 2, std::numeric_limits<double>::quiet_NaN()),
       dist_(n_ + m_ + 2, kInf),
       pred_cost_(n_ + m_ + 2, 0),
       pred_(n_ + m_ + 2, 0),
@@ -400,21 +399,19 @@ double DiagonalFlow::primal_cost() const {
 void DiagonalFlow::refresh(std::uint32_t node) {
   // a_i is filed in HB's stream while it is sent to the diagonal, b_j in HA's while it is not fed
   // from it; the hubs are never filed.
-  double want = std::numeric_limits<double>::quiet_NaN();
-  bool filed = false;
   if (is_a(node)) {
-    if (mate_a_[node] == kDiagonal) want = -da_[node] - pi_[node], filed = true;
+    if (mate_a_[node] == kDiagonal) {
+      hub_b_.set(node, -da_[node] - pi_[node]);
+    } else {
+      hub_b_.erase(node);
+    }
   } else if (is_b(node)) {
-    if (mate_b_[b_of_node(node)] != kDiagonal) want = db_[b_of_node(node)] - pi_[node], filed = true;
-  }
-  auto& set = is_a(node) ? hub_b_ : hub_a_;
-  const std::uint32_t index = is_a(node) ? node : b_of_node(node);
-  if (key_[node] == want || (!filed && std::isnan(key_[node]))) return;
-  key_[node] = want;
-  if (filed) {
-    set.set(index, want);
-  } else {
-    set.erase(index);
+    const std::uint32_t j = b_of_node(node);
+    if (mate_b_[j] != kDiagonal) {
+      hub_a_.set(j, db_[j] - pi_[node]);
+    } else {
+      hub_a_.erase(j);
+    }
   }
 }
 

@@ -170,7 +170,6 @@ class DiagonalFlow {
   // Lazy hub arcs: HA -> b_j for b_j not fed by HA, keyed db_j - pi(b_j); HB -> a_i for a_i sent
   // to the diagonal, keyed -da_i - pi(a_i).
   KeyedIndex hub_a_, hub_b_;     // each walked from its head when its hub is settled
-  std::vector<double> key_;      // the key a node is filed under, NaN if not filed
   double hub_dist_[2] = {0, 0};  // per stream: the distance of its hub
 
   // The tree over B, per node the max of pi(b) (an upper bound: potentials only fall

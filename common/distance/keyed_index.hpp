@@ -24,7 +24,7 @@ class KeyedIndex {
   bool contains(std::uint32_t index) const { return position_[index] != kAbsent; }
   std::size_t size() const { return heap_.size(); }
 
-  // Files index under key, or moves it there.
+  // Files index under key, or moves it there (nothing to do when it is filed there already).
   void set(std::uint32_t index, double key) {
     if (!contains(index)) {
       position_[index] = static_cast<std::uint32_t>(heap_.size());
@@ -33,6 +33,7 @@ class KeyedIndex {
       return;
     }
     const std::uint32_t k = position_[index];
+    if (heap_[k].first == key) return;
     const Entry old = heap_[k];
     heap_[k].first = key;
     if (heap_[k] < old) {
@@ -42,7 +43,7 @@ class KeyedIndex {
     }
   }
 
-  void erase(std::uint32_t index) {
+  void erase(std::uint32_t index) {  // nothing when index is not filed
     if (!contains(index)) return;
     const std::uint32_t k = position_[index];
     position_[index] = kAbsent;

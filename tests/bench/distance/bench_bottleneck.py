@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from compare_anchors import finite, random_pair, scaled_pair, write_pd1
+from compare_anchors import finite, pair_name, random_pair, scaled_pair, write_pd1
 
 
 def pd1_like(size, rng):
@@ -91,7 +91,7 @@ def main(argv):
           f"{'hera/fnet-1':>12}")
     for k in range(0, len(files), 2):
         fa, fb = files[k], files[k + 1]
-        name = fa.split("/")[-1].replace(".json", "") + "->" + fb.split("/")[-1].replace(".json", "")
+        name = pair_name(fa, fb)
         a, b = finite(json.load(open(fa))["pd1"]), finite(json.load(open(fb))["pd1"])
         row(exe, name, fa, fb, a, b)
     base = finite(json.load(open(files[-1]))["pd1"])

@@ -18,13 +18,12 @@ using namespace fnet;
 
 int main(int argc, char** argv) {
   const auto [repeat, files] = bench::parse_pair_args(argc, argv, "bench_distance", 5);
-  const auto load = bench::load_diagram;
   std::printf("%-44s %3s %6s  %-10s %10s %10s %8s %10s %s\n", "pair", "dim", "pts", "metric", "ms", "value", "augment",
               "settled/boxes", "arcs rounds repaired complete");
   for (std::size_t f = 0; f < files.size(); f += 2) {
     double pair_total = 0;
     for (int dim = 0; dim < 2; ++dim) {
-      const Diagram a = load(files[f], dim), b = load(files[f + 1], dim);
+      const Diagram a = bench::load_diagram(files[f], dim), b = bench::load_diagram(files[f + 1], dim);
       for (const double q : {0.0, 1.0, 2.0}) {
         std::vector<double> times;
         double value = 0;

@@ -95,6 +95,11 @@ def rel(x, v):
     return (x / v - 1) if v and x == x else (0.0 if x == v else float("nan"))
 
 
+def pair_name(fa, fb):
+    """"A->B" from two diagram files' paths."""
+    return fa.split("/")[-1].replace(".json", "") + "->" + fb.split("/")[-1].replace(".json", "")
+
+
 def whole_process(exe, fa, fb, dim, metric, runs):
     """Median wall time of `fnet-analyze distance` as a user runs it: start-up, reading the two
     documents, the computation, writing the answer."""
@@ -187,14 +192,16 @@ def main(argv):
     print("== LAMMPS frame pairs (floor) ==")
     print(HEADER)
     sums = {}
+    approx = []  # the approximate-mode pairs: the LAMMPS pairs' pd1 first, then the perturbed copies
     for k in range(0, len(files), 2):
         fa, fb = files[k], files[k + 1]
-        name = fa.split("/")[-1].replace(".json", "") + "->" + fb.split("/")[-1].replace(".json", "")
+        name = pair_name(fa, fb)
         frames = name.replace("_normal", "").replace("_tangential", "")
         da, db = json.load(open(fa)), json.load(open(fb))
         for dim in (0, 1):
             a, b = finite(da[f"pd{dim}"]), finite(db[f"pd{dim}"])
             sums[frames] = sums.get(frames, 0.0) + compare(exe, name, fa, fb, a, b, dim, whole=True)
+        approx.append((name, fa, fb, a, b, APPROX_DELTAS_LAMMPS))  # a, b: the pd1s
     for frames, s in sums.items():
         print(f"fnet, twelve exact distances of {frames} (d_B, W1, W2 x pd0, pd1 x normal, tangential): "
               f"{s*1e3:.1f} ms")
@@ -204,12 +211,6 @@ def main(argv):
     print("\n== Larger pairs: jittered copies of the last pair's pd1 (then random pairs), B a perturbed copy of A ==")
     print(HEADER)
     with tempfile.TemporaryDirectory() as tmp:
-        # The LAMMPS pairs first, then the perturbed copies.
-        approx = []
-        for k in range(0, len(files), 2):
-            name = files[k].split("/")[-1].replace(".json", "") + "->" + files[k + 1].split("/")[-1].replace(".json", "")
-            approx.append((name, files[k], files[k + 1], finite(json.load(open(files[k]))["pd1"]),
-                           finite(json.load(open(files[k + 1]))["pd1"]), APPROX_DELTAS_LAMMPS))
         for size in sizes:
             a, b = scaled_pair(base, size, rng)
             fa, fb = os.path.join(tmp, f"a{size}.json"), os.path.join(tmp, f"b{size}.json")
