@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "client/commands.hpp"
+#include "client/csv_provenance.hpp"
 #include "client/rpc_client.hpp"
 #include "client/value_text.hpp"
 #include "common/analysis/blocks.hpp"
@@ -81,9 +82,17 @@ int blocks_command(const Endpoint& at, const std::vector<std::string>& args) {
   const json r = rpc.call("blocks.get", p);
   if (format == "json")
     std::cout << r.dump() << "\n";
-  else if (format == "csv")
+  else if (format == "csv") {
+    std::cout << csv_provenance_line(rpc,
+                                     "run " + r["run"].get<std::string>() + " frames " + r["frame"].dump() + " and " +
+                                         r["other_frame"].dump() + ", " + r["k"].dump() + " x " + r["k"].dump() +
+                                         " blocks (each normalized by its own mean force), " +
+                                         r["metric"].get<std::string>() + " PD" + r["dim"].dump() + ", " +
+                                         r["force"].get<std::string>() + " forces",
+                                     r["essential"].get<std::string>())
+              << "\n";
     print_csv(r);
-  else
+  } else
     print_table(r);
   return kOk;
 }

@@ -15,8 +15,10 @@
 
 #include "client/cli_options.hpp"
 #include "client/commands.hpp"
+#include "client/csv_provenance.hpp"
 #include "client/rpc_client.hpp"
 #include "client/value_text.hpp"
+#include "common/build_info/build_info.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/explain_table.hpp"
 #include "proto/json_rpc.hpp"
@@ -37,14 +39,16 @@ constexpr const char* kUsageText =
     "             [--from F] [--to T] [--format table|csv|json]; binned over an ensemble's runs:\n"
     "             --ensemble E [--bins WIDTH | --bin-count N] [--axis rho|rho-minus-rho-j];\n"
     "             d_B / d_Wq: --ratio wasserstein1|wasserstein2 (per frame, or of the bin means)\n"
-    "  watch      live view of a run (frames, rho, Z, latest distances, trend): [--run R] [--metric M]\n"
-    "             [--dim D] [--force F] [--plain] [--until-complete]; Ctrl-C leaves\n"
+    "  watch      live view of a run (frames, ETA, lag, rho, Z, rho_J, every series as a log sparkline):\n"
+    "             [--run R] [--series all|KEYS] [--wait S] [--plain [--metric M] [--dim D] [--force F]]\n"
+    "             [--until-complete]; Ctrl-C leaves\n"
     "  diagram    a frame's persistence diagram: --frame K [--run R] [--dim D] [--force F]\n"
     "             [--format table|csv|json]\n"
     "  distance   distance between two frames, also across runs: --frame A --other-frame B --metric M\n"
     "             [--q Q] [--run R] [--other-run R2] [--dim D] [--force F]\n"
-    "             [--essential floor|sentinel|separate] [--delta D]\n"
-    "  status     server health: uptime, frames/s, lag, rejected frames with reasons\n"
+    "             [--essential floor|sentinel|separate] [--delta D] [--format table|json]\n"
+    "  status     server health: uptime, frames/s, lag, rejected frames with reasons, its build\n"
+    "  rescan     serve the stores placed in the server's data directory since it started\n"
     "  blocks     where the network changed: distances cell by cell over a k x k grid between two frames:\n"
     "             --frame A --other-frame B --metric M [--k 2] [--q Q] [--run R] [--dim D] [--force F]\n"
     "             [--essential E] [--format table|csv|json]\n"
@@ -53,7 +57,7 @@ constexpr const char* kUsageText =
     "             [--q Q] [--run R] [--other-run R2] [--dim D] [--force F] [--essential E] [--format table|json]\n"
     "\n"
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
-    "  --port P (default $FNET_PORT, else 7707)\n"
+    "  --port P (default $FNET_PORT, else 7707); --version prints fnetctl's version and commit\n"
     "exit codes: 0 ok, 1 a failure of fnetctl itself (an answer it cannot read, output it cannot\n"
     "            write), 2 bad usage or parameter, 3 server unreachable, 4 unknown run, frame or\n"
     "            ensemble, 5 other server error\n"
@@ -179,11 +183,33 @@ int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
   if (vm.count("from") && vm.count("to") && from > to)
     throw po::error("--from " + std::to_string(from) + " is after --to " + std::to_string(to));
   const json r = rpc().call("series.get", p);
+  if (r["frame"].empty() && (vm.count("from") || vm.count("to"))) {
+    // An empty answer for a range: say where the run's frames are rather than print nothing.
+    const json summary = rpc().call("run.get", {{"run", r["run"]}});
+    const std::string run = r["run"].get<std::string>();
+    if (summary["last_frame"].is_null())
+      std::cerr << "fnetctl query: run " << run << " has no analyzed frame yet\n";
+    else
+      std::cerr << "fnetctl query: run " << run << " has no analyzed frame in the range asked ("
+                << (vm.count("from") ? "--from " + std::to_string(from) : std::string(""))
+                << (vm.count("from") && vm.count("to") ? " " : "")
+                << (vm.count("to") ? "--to " + std::to_string(to) : std::string("")) << "): its frames run from "
+                << summary["first_frame"].get<std::uint32_t>() << " to the last analyzed frame "
+                << summary["last_frame"].get<std::uint32_t>() << "\n";
+    return kUnknown;
+  }
   if (format == "json")
     std::cout << r.dump() << "\n";
-  else if (format == "csv")
+  else if (format == "csv") {
+    std::cout << csv_provenance_line(rpc(),
+                                     "run " + r["run"].get<std::string>() + ", " + r["metric"].get<std::string>() +
+                                         (r.contains("ratio") ? " / " + r["ratio"].get<std::string>() : "") + " PD" +
+                                         std::to_string(r["dim"].get<int>()) + ", " + r["force"].get<std::string>() +
+                                         " forces",
+                                     r["essential"].get<std::string>())
+              << "\n";
     print_series_csv(r);
-  else
+  } else
     print_series_table(r);
   return kOk;
 }
@@ -223,6 +249,12 @@ int cmd_diagram(Connection& rpc, const std::vector<std::string>& args) {
   }
   const json r = rpc().call("diagram.get", p);
   if (format == "csv") {
+    std::cout << csv_provenance_line(rpc(),
+                                     "run " + r["run"].get<std::string>() + " frame " + r["frame"].dump() + ", PD" +
+                                         r["dim"].dump() + " of the " + r["force"].get<std::string>() +
+                                         " force network",
+                                     "none (a diagram)")
+              << "\n";
     std::cout << "birth,death\n";
     for (const json& pt : r["points"])
       std::cout << exact_number(pt[0].get<double>()) << "," << exact_number(pt[1].get<double>()) << "\n";
@@ -235,22 +267,41 @@ int cmd_diagram(Connection& rpc, const std::vector<std::string>& args) {
   return kOk;
 }
 
+// distance.get's answer for the eye: what was compared, then the value and its certificate.
+void print_distance_table(const json& r) {
+  const bool infinite = r.value("infinite", false);
+  std::cout << "run " << r["run"].get<std::string>() << " frame " << r["frame"] << " -> "
+            << r.value("other_run", r["run"]).get<std::string>() << " frame " << r["other_frame"] << ": "
+            << r["metric"].get<std::string>()
+            << (r.contains("q") && r["metric"] == "wasserstein" ? " q=" + exact_number(r["q"].get<double>()) : "")
+            << ", PD" << r["dim"] << ", " << r["force"].get<std::string>()
+            << " forces, essential=" << r["essential"].get<std::string>() << " (units: the frames' mean force)\n";
+  const auto cell = [&](const char* key) { return distance_cell(r.value(key, json()), infinite, CellStyle::table); };
+  std::cout << std::left << std::setw(8) << "value" << cell("value") << "\n"
+            << std::setw(8) << "lower" << cell("lower") << "\n"
+            << std::setw(8) << "upper" << cell("upper") << "\n"
+            << std::setw(8) << "exact" << (r.value("exact", false) ? "yes" : "no") << std::right << "\n";
+}
+
 int cmd_distance(Connection& rpc, const std::vector<std::string>& args) {
   po::options_description o(
       "usage: fnetctl distance --frame A --other-frame B --metric M [options]\n\n"
-      "Prints the API's answer (distance.get): value, lower, upper, exact; an infinite distance\n"
-      "(--essential separate) is \"value\": null with \"infinite\": true and the reason.\n\noptions");
+      "The distance between two frames' diagrams (distance.get): a table of the value, its certified\n"
+      "lower and upper bounds and whether it is exact, or with --format json the API's answer, where\n"
+      "an infinite distance (--essential separate) is \"value\": null with \"infinite\": true.\n\noptions");
   SeriesOptions c;
   c.add(o, true);
   long long frame = 0, other = 0;
-  std::string other_run;
+  std::string other_run, format = "table";
   double delta = 0;
   o.add_options()("frame", po::value(&frame)->required(), "first frame")(
       "other-frame", po::value(&other)->required(), "second frame")("other-run", po::value(&other_run),
                                                                     "run of the second frame (default: the first's)")(
-      "delta", po::value(&delta)->default_value(0), "0: exact; > 0: certified relative accuracy");
+      "delta", po::value(&delta)->default_value(0), "0: exact; > 0: certified relative accuracy")(
+      "format", po::value(&format)->default_value("table"), "table or json (the API's answer)");
   po::variables_map vm;
   if (!parse_command(o, args, &vm)) return kOk;
+  format_option(format, {"table", "json"});
   json p = c.checked(vm);
   p["frame"] = frame_option("--frame", frame);
   p["other_frame"] = frame_option("--other-frame", other);
@@ -258,7 +309,12 @@ int cmd_distance(Connection& rpc, const std::vector<std::string>& args) {
   if (!std::isfinite(delta) || delta < 0)
     throw po::error("--delta must be 0 (exact) or a finite relative accuracy > 0, got " + exact_number(delta));
   if (delta > 0) p["delta"] = delta;
-  std::cout << rpc().call("distance.get", p).dump() << "\n";
+  const json r = rpc().call("distance.get", p);
+  if (format == "json") {
+    std::cout << r.dump() << "\n";
+    return kOk;
+  }
+  print_distance_table(r);
   return kOk;
 }
 
@@ -295,6 +351,21 @@ int cmd_explain(Connection& rpc, const std::vector<std::string>& args) {
   return kOk;
 }
 
+int cmd_rescan(Connection& rpc, const std::vector<std::string>& args) {
+  po::options_description o(
+      "usage: fnetctl rescan\n\n"
+      "Has the server read the stores placed in its data directory since it started (e.g. by\n"
+      "fnet-analyze store --data-dir, once that has finished): the runs it adopts are served from\n"
+      "then on. Exit 5 when a store could not be read (each named).\n\noptions");
+  o.add_options()("help,h", "show this help");
+  if (!parse_command(o, args)) return kOk;
+  const json r = rpc().call("server.rescan");
+  if (r["adopted"].empty()) std::cout << "no new store\n";
+  for (const json& run : r["adopted"]) std::cout << "adopted run " << run.get<std::string>() << "\n";
+  for (const json& problem : r["problems"]) std::cerr << "fnetctl rescan: " << problem.get<std::string>() << "\n";
+  return r["problems"].empty() ? kOk : kServerError;
+}
+
 int cmd_ensembles(Connection& rpc, const std::vector<std::string>& args) { return ensembles_command(rpc(), args); }
 
 int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
@@ -313,6 +384,11 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
   // look healthy.
   const std::string ingest = s.value("ingest", "unknown");
   std::printf("ingest %s\n", ingest.c_str());
+  if (s.contains("build"))
+    std::printf("fnet-server %s (commit %s), stores %s, %s convention\n",
+                s["build"]["version"].get<std::string>().c_str(), s["build"]["commit"].get<std::string>().c_str(),
+                s["build"]["store_schema"].get<std::string>().c_str(),
+                s["build"]["convention"].get<std::string>().c_str());
   std::printf("uptime %.0f s, %zu run(s), %zu connection(s), %zu subscription(s)\n", s["uptime_seconds"].get<double>(),
               s["runs"].size(), s["connections"].get<std::size_t>(), s["subscriptions"].get<std::size_t>());
   std::printf(
@@ -343,6 +419,10 @@ int run(std::vector<std::string> args) {
     (args.empty() ? std::cerr : std::cout) << kUsageText;
     return args.empty() ? kUsage : kOk;
   }
+  if (args[0] == "--version") {
+    std::cout << fnet::version_line("fnetctl") << "\n";
+    return kOk;
+  }
   const std::string command = args[0];
   args.erase(args.begin());
   try {
@@ -350,8 +430,8 @@ int run(std::vector<std::string> args) {
     if (command == "blocks") return blocks_command(at, args);
     using Fn = int (*)(Connection&, const std::vector<std::string>&);
     const std::map<std::string, Fn> commands = {
-        {"runs", cmd_runs},         {"ensembles", cmd_ensembles}, {"query", cmd_query},  {"diagram", cmd_diagram},
-        {"distance", cmd_distance}, {"explain", cmd_explain},     {"status", cmd_status}};
+        {"runs", cmd_runs},         {"ensembles", cmd_ensembles}, {"query", cmd_query},   {"diagram", cmd_diagram},
+        {"distance", cmd_distance}, {"explain", cmd_explain},     {"status", cmd_status}, {"rescan", cmd_rescan}};
     const auto it = commands.find(command);
     if (it == commands.end()) {
       std::cerr << "fnetctl: unknown command '" << command << "'\n\n" << kUsageText;

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The main job on a small default, after `deploy/build.sh`: fnet-server and fnet-simd on loopback,
 # a compression of a few hundred disks watched live with fnetctl, then its W2 series.
-# Override with environment variables: PARTICLES, SPEED, FRAMES, PORT, DOMAIN_ID, DATA_DIR, BIN_DIR
-# (the build directory, default build).
+# Override with environment variables: PARTICLES (400 disks), SPEED (v_c, 5e-4 d/tau_c), FRAMES (60),
+# PORT (7707, the JSON API's), DOMAIN_ID (0: the DDS domain fnet-simd publishes on and fnet-server
+# reads; another value keeps two demos on one machine apart), DATA_DIR (build/demo-data: the
+# server's stores) and BIN_DIR (build: where the programs were built).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${BIN_DIR:-build}

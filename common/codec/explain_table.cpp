@@ -33,11 +33,9 @@ std::string grains_text(const nlohmann::json& p) {
   return simplex_text(p.at("birth_simplex")) + " / " + simplex_text(p.at("death_simplex"));
 }
 
-// The centre of the grains that create the term's feature: of b's point (the later frame), or of
-// a's when b is the diagonal; "-" without positions.
-std::string where_text(const nlohmann::json& term) {
-  const nlohmann::json& p = term.at("b").is_null() ? term.at("a") : term.at("b");
-  if (p.is_null() || !p.at("birth_simplex").contains("positions")) return "-";
+// "(x, y)": the centre of the grains that create a point's feature; empty without positions.
+std::string centre_text(const nlohmann::json& p) {
+  if (p.is_null() || !p.at("birth_simplex").contains("positions")) return "";
   double x = 0, y = 0;
   const auto& positions = p.at("birth_simplex").at("positions");
   for (const auto& xy : positions) x += xy.at(0).get<double>(), y += xy.at(1).get<double>();
@@ -49,6 +47,17 @@ std::string where_text(const nlohmann::json& term) {
 
 }  // namespace
 
+std::string explain_where(const nlohmann::json& term) {
+  const std::string a = centre_text(term.at("a")), b = centre_text(term.at("b"));
+  if (a.empty() && b.empty()) return "-";
+  if (a.empty()) return "b " + b;
+  if (b.empty()) return "a " + a;
+  if (a == b) return "a = b " + a;
+  return "a " + a + " b " + b;
+}
+
+namespace {}  // namespace
+
 void write_explain_table(std::ostream& out, const nlohmann::json& answer, const std::string& metric_label) {
   out << metric_label << " PD" << answer.at("dim").get<int>() << " " << answer.at("force").get<std::string>() << " ("
       << answer.at("essential").get<std::string>()
@@ -59,7 +68,9 @@ void write_explain_table(std::ostream& out, const nlohmann::json& answer, const 
     out << "no term of positive cost\n";
     return;
   }
-  char line[320];
+  out << "a: the first frame's point, b: the second's; where: the centre of the grains that create each "
+         "point's feature, in d (one position when both agree)\n";
+  char line[400];
   std::snprintf(line, sizeof line, "%4s %12s %26s %26s  %-24s %-24s %s\n", "rank", "cost", "a (birth, death)",
                 "b (birth, death)", "a grains: birth / death", "b grains: birth / death", "where (x, y)");
   out << line;
@@ -67,7 +78,7 @@ void write_explain_table(std::ostream& out, const nlohmann::json& answer, const 
     std::snprintf(line, sizeof line, "%4d %12s %26s %26s  %-24s %-24s %s\n", t.at("rank").get<int>(),
                   number(t.at("cost").get<double>()).c_str(), point_text(t.at("a")).c_str(),
                   point_text(t.at("b")).c_str(), grains_text(t.at("a")).c_str(), grains_text(t.at("b")).c_str(),
-                  where_text(t).c_str());
+                  explain_where(t).c_str());
     out << line;
   }
 }

@@ -31,7 +31,7 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     return -1;
   };
   // fnet writes z; the LAMMPS reference data says Z.
-  const int c_frame = column({"frame"}, true), c_step = column({"step"}, true), c_time = column({"time"}, false),
+  const int c_frame = column({"frame"}, true), c_step = column({"step"}, false), c_time = column({"time"}, false),
             c_rho = column({"rho"}, true), c_z = column({"z", "Z"}, true);
   std::vector<RunFrame> out;
   std::size_t line_no = 1;
@@ -47,7 +47,8 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     try {
       f.header.run_id = run_id;
       f.header.index = static_cast<std::uint32_t>(std::stoul(cells[c_frame]));
-      f.header.step = std::stoull(cells[c_step]);
+      // An experiment has no simulation step: its frames count in their place.
+      f.header.step = c_step >= 0 ? std::stoull(cells[c_step]) : f.header.index;
       f.header.time = c_time >= 0 ? std::stod(cells[c_time]) : 0.0;
       f.header.rho = std::stod(cells[c_rho]);
       f.header.z = std::stod(cells[c_z]);

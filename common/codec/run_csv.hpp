@@ -1,5 +1,6 @@
 // A run exported as CSV (fnet-simd --export-csv, or the LAMMPS reference frames):
-//   DIR/index.csv                 frame,step[,time],rho,z   (Z also read: the LAMMPS reference data)
+//   DIR/index.csv                 frame[,step][,time],rho,z   (Z also read: the LAMMPS reference data;
+//                                 without step, as from an experiment, a frame's step is its index)
 //   DIR/frame_NNNN_particles.csv  id,x,y,r
 //   DIR/frame_NNNN_contacts.csv   i,j,fn,ft
 #pragma once

@@ -136,6 +136,8 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::Group root(H5Gopen2(file_.get(), "/", H5P_DEFAULT), "open /");
     h5::write_attribute(root.get(), "schema", std::string(kStoreSchema));
     h5::write_attribute(root.get(), "run_id", run_id);
+    h5::write_attribute(root.get(), "convention", std::string(kStoreConvention));
+    write_provenance(root.get());
     const hid_t f = file_.get();
     h5::create_extendible(f, "announcements", fixed_string(kInfoBytes).get(), 0, 4);
     h5::create_extendible(f, "frame", H5T_NATIVE_UINT32, 0, 256);
@@ -305,6 +307,7 @@ StoredRun read_store(const std::filesystem::path& path) {
   const bool v1 = schema == kStoreSchemaV1;
   StoredRun out;
   out.schema = schema;
+  out.provenance = read_provenance(root.get(), file);
   out.info.run_id = h5::read_string(root.get(), "run_id", file);
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {

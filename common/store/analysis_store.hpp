@@ -15,10 +15,13 @@
 #include "common/analysis/analyzed_frame.hpp"
 #include "common/analysis/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
+#include "common/store/provenance_attributes.hpp"
 
 namespace fnet {
 
 inline constexpr const char* kStoreSchema = "fnet-store-2";
+// The convention for classes that never die under which the stored distances are measured.
+inline constexpr const char* kStoreConvention = "floor";
 // The first schema, without the frames' networks: still read, and continued as the current one.
 inline constexpr const char* kStoreSchemaV1 = "fnet-store-1";
 
@@ -32,6 +35,7 @@ struct StoredRun {
   bool has_info = false;                // false until the run's announcement was seen
   StoreTime announced_at = NAN;         // when the last announcement was written
   std::string schema;                   // the schema the file was written in
+  FileProvenance provenance;            // which fnet wrote the file, and when
   std::vector<AnalyzedFrame> frames;    // ascending index; their networks are not read (read_network)
   std::vector<bool> has_network;        // per frame: whether its force network is stored
   std::vector<StoreTime> committed_at;  // when each frame was committed

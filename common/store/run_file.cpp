@@ -49,6 +49,7 @@ void RunFileWriter::create(const std::filesystem::path& path, const RunInfo& inf
     h5::Group root(H5Gopen2(f, "/", H5P_DEFAULT), "open /");
     h5::write_attribute(root.get(), "schema", std::string(kRunFileSchema));
     write_run_info(root.get(), info);
+    write_provenance(root.get());
   }
   h5::create_extendible(f, "frame", H5T_NATIVE_UINT32, 0, 256);
   h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
@@ -150,6 +151,7 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   RunFileContents out;
   out.info = read_run_info(root.get(), file);
+  out.provenance = read_provenance(root.get(), file);
 
   const hid_t g = f.get();
   const auto frame = h5::read_uint32s(g, "frame", 0, file);

@@ -11,6 +11,7 @@
 
 #include "common/analysis/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
+#include "common/store/provenance_attributes.hpp"
 
 namespace fnet {
 
@@ -39,6 +40,7 @@ class RunFileWriter {
 struct RunFileContents {
   RunInfo info;
   std::vector<RunFrame> frames;  // the committed frames, in the order written
+  FileProvenance provenance;     // which fnet wrote the file, and when ("unknown" for fnet-run-1)
 };
 
 // Reads a whole run file, also one still being written; throws h5::Error naming the file and

@@ -11,10 +11,12 @@
 
 #include "common/analysis/frame_analysis.hpp"
 #include "common/analysis/metric_vocabulary.hpp"
+#include "common/build_info/build_info.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/distance_json.hpp"
 #include "common/codec/explain_json.hpp"
 #include "common/codec/run_info_json.hpp"
+#include "common/store/analysis_store.hpp"
 #include "server/analysis/api_params.hpp"
 #include "server/analysis/block_methods.hpp"
 #include "server/analysis/connection_subscriptions.hpp"
@@ -193,7 +195,14 @@ json server_status(const ApiContext& ctx) {
   for (const std::string& s : r.recent_rejections()) rejections.push_back(s);
   json runs = json::array();
   for (const RunSummary& s : r.runs()) runs.push_back(summary_json(s));
+  const BuildInfo b = build_info();
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
+          {"build",
+           {{"version", b.version},
+            {"commit", b.commit},
+            {"store_schema", kStoreSchema},
+            {"convention", kStoreConvention},
+            {"api", "json-rpc-2.0 (proto/api.md)"}}},
           {"ingest", ctx.ingest_state()},
           {"runs", runs},
           {"frames_per_second", r.frames_per_second()},
@@ -224,7 +233,7 @@ class Subscriptions {
     const auto since = get_index(params, "since");
     const std::string run = get_string(params, "run").value_or("");
     Registry& registry = ctx_.registry;
-    if (!run.empty() && !registry.has_run(run)) unknown_run(run);
+    if (!run.empty() && !registry.has_run(run)) unknown_run(registry, run);
     held_->check_room(*session);
     std::weak_ptr<rpc::Session> weak = session;
     const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
@@ -284,6 +293,10 @@ MethodTable method_table(ApiContext& ctx) {
           return subscriptions->unsubscribe(p, s);
         }}},
       {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
+      {"server.rescan", {{}, plain([&registry](const json&) {
+                           const Registry::Adopted a = registry.adopt_new_stores();
+                           return json{{"adopted", a.runs}, {"problems", a.problems}};
+                         })}},
   };
   table.merge(ensemble_methods(ctx));
   return table;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "server/analysis/close_names.hpp"
 
 namespace fnet::server {
 
@@ -115,6 +118,22 @@ json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConventi
   throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
 }
 
+[[noreturn]] void unknown_run(const Registry& registry, const std::string& run) {
+  std::vector<std::string> names;
+  for (const RunSummary& s : registry.runs()) names.push_back(s.run_id);
+  const std::vector<std::string> close = close_names(names, run);
+  std::string message = "unknown run '" + run + "'";
+  if (!close.empty()) {
+    message += "; close: ";
+    for (std::size_t k = 0; k < close.size(); ++k) message += (k ? ", " : "") + close[k];
+  } else {
+    message += names.empty() ? "; the server has no runs"
+                             : "; the server has " + std::to_string(names.size()) + " run" +
+                                   (names.size() == 1 ? "" : "s") + " (runs.list)";
+  }
+  throw Error(rpc::kUnknownRun, message, {{"run", run}, {"close", close}});
+}
+
 [[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index) {
   throw Error(rpc::kUnknownFrame, "run '" + run + "' has no analyzed frame " + std::to_string(index),
               {{"run", run}, {"frame", index}});
@@ -128,7 +147,7 @@ std::string resolve_run(const Registry& registry, const json& params, std::strin
     if (run.empty()) throw Error(rpc::kUnknownRun, "the server has no runs yet", {{"run", nullptr}});
     return run;
   }
-  if (!registry.has_run(run)) unknown_run(run);
+  if (!registry.has_run(run)) unknown_run(registry, run);
   return run;
 }
 

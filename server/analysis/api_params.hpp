@@ -34,6 +34,8 @@ MetricChoice get_metric(const json& params);
 json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConvention essential);
 
 [[noreturn]] void unknown_run(const std::string& run);
+// The same error, its message and data.close naming the server's runs closest to `run`.
+[[noreturn]] void unknown_run(const Registry& registry, const std::string& run);
 [[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index);
 // A committed frame's force network read back from the run's store; error -32005 naming the run,
 // the frame and why when the store does not hold it.

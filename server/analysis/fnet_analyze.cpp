@@ -13,6 +13,7 @@
 #include <sys/mman.h>
 #include <vector>
 
+#include "common/build_info/build_info.hpp"
 #include "server/analysis/commands.hpp"
 
 namespace {
@@ -81,6 +82,10 @@ int main(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     (args.empty() ? std::cerr : std::cout) << kUsage;
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::cout << fnet::version_line("fnet-analyze") << "\n";
+    return 0;
   }
   const std::string name = args[0];
   if (name == "store" || name == "publish") return run_in_io_binary(name, argv);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/build_info/build_info.hpp"
 #include "server/analysis/commands.hpp"
 
 int main(int argc, char** argv) {
@@ -13,6 +14,10 @@ int main(int argc, char** argv) {
       {"publish", fnet::analyze::publish_command},
   };
   std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && args[0] == "--version") {
+    std::cout << fnet::version_line("fnet-analyze-io") << "\n";
+    return 0;
+  }
   const auto command = args.empty() ? commands.end() : commands.find(args[0]);
   if (command == commands.end()) {
     std::cerr << "usage: fnet-analyze store|publish [options] (run 'fnet-analyze --help')\n";

@@ -7,6 +7,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/program_options.hpp>
 
+#include "common/build_info/build_info.hpp"
 #include "server/analysis/api_methods.hpp"
 #include "server/analysis/ingest.hpp"
 #include "server/analysis/rpc_server.hpp"
@@ -28,8 +29,8 @@ int main(int argc, char** argv) {
       "set CYCLONEDDS_URI, e.g. to deploy/cyclonedds-loopback.xml) and serves the results as\n"
       "newline-delimited JSON-RPC 2.0 over TCP (proto/api.md). One HDF5 store per run in DIR;\n"
       "on restart the stores are reloaded and runs still streaming continue.\n\noptions");
-  options.add_options()("help,h", "show this help")("data-dir", po::value(&data_dir)->required(),
-                                                    "directory of the run stores (created if absent)")(
+  options.add_options()("help,h", "show this help")("version", "print the version and commit, then exit")(
+      "data-dir", po::value(&data_dir)->required(), "directory of the run stores (created if absent)")(
       "port", po::value(&port)->default_value(port), "TCP port of the JSON API (0: any free port, printed at start)")(
       "bind", po::value(&bind)->default_value(bind), "address to listen on (loopback by default)")(
       "threads", po::value(&threads)->default_value(threads), "analysis threads")(
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
     po::store(po::parse_command_line(argc, argv, options), vm);
     if (vm.count("help")) {
       std::cout << options << "\n";
+      return 0;
+    }
+    if (vm.count("version")) {
+      std::cout << fnet::version_line("fnet-server") << "\n";
       return 0;
     }
     po::notify(vm);

@@ -15,10 +15,23 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
 }
 
 std::vector<std::string> Registry::load() {
-  std::vector<std::string> problems;
   std::lock_guard lock(mutex_);
+  return load_locked(nullptr);
+}
+
+Registry::Adopted Registry::adopt_new_stores() {
+  std::lock_guard lock(mutex_);
+  Adopted out;
+  out.problems = load_locked(&out.runs);
+  return out;
+}
+
+std::vector<std::string> Registry::load_locked(std::vector<std::string>* only_new) {
+  std::vector<std::string> problems;
   for (const auto& entry : std::filesystem::directory_iterator(data_dir_)) {
     if (entry.path().extension() != ".h5") continue;
+    // A rescan takes only the stores of runs the server does not know: the others it writes itself.
+    if (only_new && runs_.count(entry.path().stem().string())) continue;
     try {
       StoredRun stored = read_store(entry.path());
       Run& run = run_locked(stored.info.run_id);
@@ -34,6 +47,7 @@ std::vector<std::string> Registry::load() {
       for (const RejectedFrame& r : stored.rejected) settled.push_back(r.index);
       run.rejected = std::move(stored.rejected);
       run.pipeline.resume(settled, run.committed.empty() ? nullptr : run.committed.rbegin()->second);
+      if (only_new) only_new->push_back(run.run_id);
     } catch (const std::exception& e) {
       problems.push_back(e.what());
     }

@@ -77,6 +77,15 @@ class Registry {
   // Reads every store in the data directory; returns messages about stores that could not be read.
   std::vector<std::string> load();
 
+  // Reads the stores placed in the data directory since (RUN.h5 of a run the server does not know,
+  // e.g. written by fnet-analyze store, which must have finished): the runs adopted, and messages
+  // about stores that could not be read.
+  struct Adopted {
+    std::vector<std::string> runs;
+    std::vector<std::string> problems;
+  };
+  Adopted adopt_new_stores();
+
   void on_info(const RunInfo& info);
   void on_frame(RunFrame frame);
   void on_malformed(const std::string& reason);
@@ -152,6 +161,9 @@ class Registry {
   const std::filesystem::path data_dir_;
   boost::asio::thread_pool& pool_;
   const RegistryLimits limits_;
+  // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
+  // runs it adopts there.
+  std::vector<std::string> load_locked(std::vector<std::string>* only_new);
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
   std::map<std::uint64_t, Subscription> subscriptions_;

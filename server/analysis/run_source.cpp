@@ -11,7 +11,9 @@ namespace po = boost::program_options;
 
 void RunSource::add_options(po::options_description& options) {
   options.add_options()("run-file", po::value(&run_file), "HDF5 run file written by fnet-simd --out")(
-      "csv-dir", po::value(&csv_dir), "folder exported by fnet-simd --export-csv (index.csv + frame_NNNN_*.csv)")(
+      "csv-dir", po::value(&csv_dir),
+      "a run folder: index.csv (frame[,step][,time],rho,z; an experiment without steps may leave step "
+      "out) + frame_NNNN_contacts.csv [+ frame_NNNN_particles.csv], as fnet-simd --export-csv writes it")(
       "run-id", po::value(&run_id), "run id (required with --csv-dir; overrides the run file's)")(
       "ensemble", po::value(&ensemble),
       "the ensemble of realizations the run belongs to (overrides the run file's; a CSV folder has none)");

@@ -21,6 +21,7 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/build_info/build_info.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/sim/checkpoint.hpp"
 #include "server/sim/csv_export.hpp"
@@ -78,9 +79,12 @@ constexpr const char* kUsage =
     "\n"
     "Output: --export-csv DIR writes DIR/index.csv (frame,step,time,rho,z) and per frame\n"
     "DIR/frame_NNNN_particles.csv (id,x,y,r), DIR/frame_NNNN_contacts.csv (i,j,fn,ft; the input of\n"
-    "'fnet-analyze diagram') and DIR/frame_NNNN_wall_contacts.csv (grain,wall,side,fn,ft).\n"
+    "'fnet-analyze diagram') and DIR/frame_NNNN_wall_contacts.csv (grain,wall,side,fn,ft), and\n"
+    "DIR/provenance.json (fnet's version and commit, the date, the run's parameters and seed).\n"
     "Frames are published on Cyclone DDS (topics fnet_RunInfo, fnet_ForceFrame; reliable, keep-all,\n"
-    "transient-local) unless --no-dds; --out FILE also writes them to an HDF5 run file.\n"
+    "transient-local) on --domain (default 0; fnet-server must use the same) unless --no-dds;\n"
+    "--out FILE also writes them to an HDF5 run file. With DDS as the only output, a run whose frames\n"
+    "no subscriber matched exits 3 (the frames are lost), naming the domain.\n"
     "\n"
     "Checkpoints: with --checkpoint FILE (default DIR/checkpoint.fnetsim with --export-csv) the state\n"
     "is saved after every frame, every --checkpoint-interval seconds and on SIGINT/SIGTERM;\n"
@@ -98,6 +102,10 @@ constexpr const char* kUsage =
     "Threads: each realization takes --threads (default 1), so --jobs x --threads in all.\n"
     "\n"
     "options";
+
+// Exit code of a finished run whose frames reached no one: DDS was its only output and no
+// subscriber ever matched.
+constexpr int kFramesLost = 3;
 
 // The flags that hold a path: in an ensemble each must name every realization's own file.
 constexpr const char* kPathFlags[] = {"out", "export-csv", "checkpoint", "write-lammps-data"};
@@ -209,8 +217,8 @@ int main(int argc, char** argv) try {
   double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
   int domain = 0;
   unsigned threads = 1;
-  options.add_options()("help,h", "show this help")("config", po::value(&config),
-                                                    "JSON object of parameters (keys: the names in --show-params)");
+  options.add_options()("help,h", "show this help")("version", "print the version and commit, then exit")(
+      "config", po::value(&config), "JSON object of parameters (keys: the names in --show-params)");
   // The physics flags come from the parameter table; their values are parsed by it (a count
   // given as "-5" is an error there, not a wrapped-around integer).
   std::vector<std::string> flags;
@@ -255,6 +263,10 @@ int main(int argc, char** argv) try {
   po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << options << "\n";
+    return 0;
+  }
+  if (vm.count("version")) {
+    std::cout << fnet::version_line("fnet-simd") << "\n";
     return 0;
   }
   po::notify(vm);
@@ -346,7 +358,10 @@ int main(int argc, char** argv) try {
   o.workers = &workers;
   const std::size_t first_frame = resume && sim.phase != Phase::relax ? sim.next_frame : 0;
   const fnet::RunInfo info = run_info(sim.params, run_id, ensemble);
-  if (!export_dir.empty()) prepare_csv_dir(export_dir, first_frame);
+  if (!export_dir.empty()) {
+    prepare_csv_dir(export_dir, first_frame);
+    write_csv_provenance(export_dir, info);
+  }
   std::optional<RunFileSink> run_file;
   if (!out_file.empty()) run_file.emplace(out_file, info, resume, first_frame);
   std::optional<DdsSink> dds;
@@ -369,8 +384,9 @@ int main(int argc, char** argv) try {
         (*dds)(frame);
         if (dds_only && f.index == first_frame && !dds->subscriber_now())
           std::fprintf(stderr,
-                       "fnet-simd: warning: no DDS subscriber matched and no --out or --export-csv: frames are kept "
-                       "for late subscribers only until fnet-simd exits (--linger)\n");
+                       "fnet-simd: warning: no DDS subscriber matched on domain %d and no --out or --export-csv: "
+                       "frames are kept for late subscribers only until fnet-simd exits (--linger)\n",
+                       domain);
       }
       report_frame(f);
     };
@@ -401,14 +417,18 @@ int main(int argc, char** argv) try {
                  "fnet-simd: %lld steps in %.2f s: %.0f steps/s, %.4g particle-steps/s (N = %zu, %u thread%s)\n",
                  static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
                  steps * static_cast<double>(sim.n) / seconds, sim.n, threads, threads == 1 ? "" : "s");
-  run_file.reset();  // closed now: readers need not wait while late DDS subscribers are served
+  run_file.reset();   // closed now: readers need not wait while late DDS subscribers are served
+  bool lost = false;  // DDS was the only output and no subscriber ever took a frame
   if (dds) {
     if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");
     dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
-    if (dds_only && !dds->reached_a_subscriber())
+    lost = dds_only && !dds->reached_a_subscriber();
+    if (lost)
       std::fprintf(stderr,
-                   "fnet-simd: warning: no DDS subscriber matched during the run and there was no --out or "
-                   "--export-csv: its frames were lost\n");
+                   "fnet-simd: error: no DDS subscriber matched on domain %d during the run and there was no --out "
+                   "or --export-csv: its frames were lost (is fnet-server running with --domain %d and the same "
+                   "CYCLONEDDS_URI?)\n",
+                   domain, domain);
   }
   if (!finished) {
     if (o.checkpoint) {
@@ -420,7 +440,7 @@ int main(int argc, char** argv) try {
     }
     return 130;
   }
-  return 0;
+  return lost ? kFramesLost : 0;
 } catch (const po::error& e) {
   std::cerr << "fnet-simd: " << e.what() << " (see --help)\n";
   return 2;

@@ -1,9 +1,14 @@
 #include "server/sim/output_sinks.hpp"
 
 #include <chrono>
+#include <fstream>
+#include <stdexcept>
 #include <thread>
 
 #include <nlohmann/json.hpp>
+
+#include "common/build_info/build_info.hpp"
+#include "common/codec/run_info_json.hpp"
 
 namespace fnet::sim {
 
@@ -23,6 +28,16 @@ RunInfo run_info(const Params& p, const std::string& run_id, const std::string& 
           .seed = p.seed,
           .config_json = to_json(p).dump(),
           .ensemble = ensemble};
+}
+
+void write_csv_provenance(const std::filesystem::path& dir, const RunInfo& info) {
+  const BuildInfo b = build_info();
+  const nlohmann::json doc = {
+      {"fnet_version", b.version}, {"fnet_commit", b.commit}, {"created", utc_timestamp()}, {"run", to_json(info)}};
+  const std::filesystem::path path = dir / "provenance.json";
+  std::ofstream out(path, std::ios::trunc);
+  out << doc.dump(2) << "\n";
+  if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
 RunFrame run_frame(const FrameSnapshot& s) {

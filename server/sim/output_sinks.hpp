@@ -19,6 +19,11 @@ namespace fnet::sim {
 RunInfo run_info(const Params& params, const std::string& run_id, const std::string& ensemble = "");
 RunFrame run_frame(const FrameSnapshot& snapshot);
 
+// DIR/provenance.json beside a CSV export: which fnet wrote it and when (fnet_version,
+// fnet_commit, created) and the run's announcement (`run`: parameters and seed, as run.get gives
+// them), so that the folder names its origin wherever it is copied.
+void write_csv_provenance(const std::filesystem::path& dir, const RunInfo& info);
+
 // Publishes the run's announcement on construction and every frame handed to it.
 class DdsSink {
  public:

@@ -219,6 +219,8 @@ TEST(BlocksService, FnetctlBlocksPrintsTheCellsAsTableCsvAndJson) {
   std::istringstream lines(as_csv.out);
   std::string line;
   std::getline(lines, line);
+  EXPECT_EQ(line.rfind("# fnet-server ", 0), 0u) << "the provenance comment first: " << line;
+  std::getline(lines, line);
   EXPECT_EQ(line.rfind("row,col,x_lo,", 0), 0u) << line;
   std::size_t rows = 0;
   while (std::getline(lines, line)) {

@@ -105,11 +105,18 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return out;
 }
 
-// A CSV as rows of cells, the header first.
+// A CSV as rows of cells, the header first; the provenance comment that fnetctl writes first is
+// checked (it names the server's build, fnetctl's and the time) and left out.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   std::vector<std::vector<std::string>> rows;
-  for (const std::string& line : split(text, '\n'))
-    if (!line.empty()) rows.push_back(split(line, ','));
+  const std::vector<std::string> lines = split(text, '\n');
+  EXPECT_TRUE(
+      !lines.empty() &&
+      std::regex_search(lines[0], std::regex(R"(^# fnet-server \d+\.\d+\.\d+ \(commit [0-9a-f]{40}(-dirty)?\), )"
+                                             R"(fnetctl \d+\.\d+\.\d+ \(commit .*\); .*; written \d{4}-)")))
+      << "no provenance comment first: " << text.substr(0, 200);
+  for (const std::string& line : lines)
+    if (!line.empty() && line[0] != '#') rows.push_back(split(line, ','));
   return rows;
 }
 
@@ -150,6 +157,60 @@ TEST_F(Fnetctl, QueryCsvRoundTripsTheServedDoublesBitForBit) {
     EXPECT_TRUE(same_bits(std::stod(row[c_value]), served["value"][k].get<double>()))
         << row[c_value] << " vs " << served["value"][k].get<double>();
   }
+}
+
+// The rough edges a new user meets: a range past the last frame says where the frames are (exit
+// 4), distance prints a table by default (JSON on request, the API's answer), and a watch for a
+// run that never appears gives up after --wait naming the server's runs (exit 4). DDS domain 60.
+TEST_F(Fnetctl, RangesPastTheEndDistanceTablesAndAWatchForAMissingRun) {
+  store_run("stored", 3);
+  start_server(60);
+  const Outcome past = ctl({"query", "--run", "stored", "--metric", "bottleneck", "--from", "5"});
+  EXPECT_EQ(past.code, 4) << past.out << past.err;
+  EXPECT_THAT(past.err, AllOf(HasSubstr("no analyzed frame in the range asked (--from 5)"),
+                              HasSubstr("from 0 to the last analyzed frame 2")));
+  const Outcome inside = ctl({"query", "--run", "stored", "--metric", "bottleneck", "--from", "1", "--to", "9"});
+  EXPECT_EQ(inside.code, 0) << inside.err;
+
+  const json served =
+      call("distance.get", {{"run", "stored"}, {"frame", 0}, {"other_frame", 2}, {"metric", "wasserstein2"}});
+  const Outcome table =
+      ctl({"distance", "--run", "stored", "--frame", "0", "--other-frame", "2", "--metric", "wasserstein2"});
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_THAT(table.out, AllOf(HasSubstr("run stored frame 0 -> stored frame 2: wasserstein2, PD0, normal"),
+                               HasSubstr("exact   yes")));
+  std::smatch value;
+  ASSERT_TRUE(std::regex_search(table.out, value, std::regex(R"(value\s+(\S+))"))) << table.out;
+  EXPECT_NEAR(std::stod(value[1]), served["value"].get<double>(), 1e-7 * served["value"].get<double>());
+  const Outcome as_json = ctl({"distance", "--run", "stored", "--frame", "0", "--other-frame", "2", "--metric",
+                               "wasserstein2", "--format", "json"});
+  ASSERT_EQ(as_json.code, 0) << as_json.err;
+  EXPECT_EQ(json::parse(as_json.out)["value"], served["value"]);
+
+  const auto started = std::chrono::steady_clock::now();
+  const Outcome missing = ctl({"watch", "--run", "stroed", "--wait", "2", "--plain"});
+  EXPECT_EQ(missing.code, 4) << missing.out << missing.err;
+  EXPECT_THAT(missing.err, AllOf(HasSubstr("run stroed has not appeared after 2 s"), HasSubstr("stored")));
+  EXPECT_LT(std::chrono::steady_clock::now() - started, 30s);
+  // An unknown run's error names the close ones.
+  const Outcome unknown = ctl({"query", "--run", "stroed", "--metric", "bottleneck"});
+  EXPECT_EQ(unknown.code, 4);
+  EXPECT_THAT(unknown.err, HasSubstr("close: stored"));
+
+  // A store written into the running server's data directory is served after fnetctl rescan; a
+  // file that is not a store is named and left alone.
+  store_run("later", 2);
+  EXPECT_EQ(ctl({"query", "--run", "later", "--metric", "bottleneck"}).code, 4);
+  std::ofstream(data_dir() / "broken.h5") << "not HDF5";
+  const Outcome rescan = ctl({"rescan"});
+  EXPECT_EQ(rescan.code, 5) << rescan.out << rescan.err;
+  EXPECT_THAT(rescan.out, HasSubstr("adopted run later"));
+  EXPECT_THAT(rescan.err, HasSubstr("broken.h5"));
+  const json later = call("series.get", {{"run", "later"}, {"metric", "bottleneck"}});
+  EXPECT_EQ(later["frame"].size(), 2u);
+  EXPECT_EQ(ctl({"rescan"}).out.find("adopted"), std::string::npos) << "a known run is not adopted twice";
+  std::ifstream broken(data_dir() / "broken.h5");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(broken), {}), "not HDF5");
 }
 
 TEST_F(Fnetctl, DiagramCsvRoundTripsTheServedPoints) {

@@ -150,6 +150,22 @@ TEST(RunCsv, IndexReadsZUnderEitherName) {
   EXPECT_THAT(csv_error([&] { read_csv_run(neither.path(), "r"); }), AllOf(HasSubstr(at(index, 1)), HasSubstr("'z'")));
 }
 
+// An experiment's frames have no simulation step: index.csv without `step` reads, each frame's
+// step its index; a missing frame or rho column is still an error naming it.
+TEST(RunCsv, IndexWithoutStepTakesTheFrameIndex) {
+  TempDir dir;
+  dir.write("index.csv", "frame,rho,z\n3,0.8,4\n");
+  dir.write("frame_0003_contacts.csv", "i,j,fn,ft\n0,1,1,0.5\n");
+  dir.write("frame_0003_particles.csv", "id,x,y,r\n0,0,0,0.5\n1,1,0,0.5\n");
+  const std::vector<RunFrame> frames = read_csv_run(dir.path(), "r");
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].header.step, 3u);
+  EXPECT_EQ(frames[0].header.time, 0.0);
+  TempDir no_rho;
+  const auto index = no_rho.write("index.csv", "frame,z\n0,1\n");
+  EXPECT_THAT(csv_error([&] { read_csv_run(no_rho.path(), "r"); }), AllOf(HasSubstr(at(index, 1)), HasSubstr("'rho'")));
+}
+
 // A '+' may lead a number; a second sign after it does not make one.
 TEST(FrameCsv, PlusFollowedByMinusIsNotANumber) {
   TempDir dir;

@@ -3,7 +3,8 @@
 flag before any work is done; --rho-initial sizes the box (--box overrides it); --rho-final must
 be above the start; the help shows the code's defaults for every parameter; --show-params output
 and the parameters of earlier versions load back with --config; the relaxation is reported (and
-a capped one warned about); frames that only DDS carries, with no subscriber, are warned about;
+a capped one warned about); frames that only DDS carries, with no subscriber, are an error (exit 3,
+naming the domain); --version prints the version and commit; a CSV export names its provenance;
 the --out run file is readable with h5py while it is written.
 
 usage: cli_params.py FNET_SIMD WORKDIR CYCLONEDDS_XML"""
@@ -138,17 +139,35 @@ res = run(*small, "--quiet", "--relax-max-time", "2")
 check(res.returncode == 0 and "warning: relaxation stopped by --relax-max-time after 100 steps" in res.stderr,
       f"a relaxation ended by --relax-max-time is warned about ({res.stderr.strip()})")
 
-# Frames only DDS carries, with no subscriber: warned about. With --out: no warning.
+# Frames only DDS carries, with no subscriber: lost, exit 3 naming the domain. With --out: no warning.
 env = dict(os.environ, CYCLONEDDS_URI="file://" + os.path.abspath(dds_xml))
 domain = str(random.Random(os.getpid()).randrange(100, 200))  # a domain no other test uses
 dds_run = ["--particles", "100", "--compression-speed", "1e-2", "--frames", "3", "--rho-final", "0.66", "--quiet",
            "--domain", domain, "--ack-timeout", "1"]
 res = run(*dds_run, env=env)
-check(res.returncode == 0 and "warning: no DDS subscriber matched" in res.stderr and "frames were lost" in res.stderr,
-      f"frames published to no subscriber are warned about (rc {res.returncode}: {res.stderr.strip()})")
+check(res.returncode == 3 and "warning: no DDS subscriber matched on domain " + domain in res.stderr
+      and "error: no DDS subscriber matched on domain " + domain in res.stderr and "frames were lost" in res.stderr,
+      f"frames published to no subscriber: exit 3 naming domain {domain} (rc {res.returncode}: {res.stderr.strip()})")
 res = run(*dds_run, "--out", os.path.join(work, "run.h5"), env=env)
 check(res.returncode == 0 and "no DDS subscriber" not in res.stderr,
       f"no such warning with --out (rc {res.returncode}: {res.stderr.strip()})")
+
+# --version: the version of CMake's project and a commit; a CSV export's provenance.json names the
+# same build, the date and the run's parameters.
+res = run("--version")
+m = re.fullmatch(r"fnet-simd (\d+\.\d+\.\d+) \(commit ([0-9a-f]{40}(-dirty)?|unknown)\)\n", res.stdout)
+check(res.returncode == 0 and m is not None, f"--version prints the version and commit ({res.stdout!r})")
+csv_dir = os.path.join(work, "csv-provenance")
+res = run("--particles", "50", "--compression-speed", "1e-2", "--frames", "2", "--rho-final", "0.66", "--quiet",
+          "--no-dds", "--seed", "5", "--export-csv", csv_dir)
+try:
+    prov = json.load(open(os.path.join(csv_dir, "provenance.json")))
+    ok = (m is not None and prov["fnet_version"] == m.group(1) and prov["fnet_commit"] == m.group(2)
+          and re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", prov["created"]) is not None
+          and prov["run"]["seed"] == 5 and prov["run"]["particles"] == 50)
+except (OSError, ValueError, KeyError) as e:
+    ok, prov = False, e
+check(res.returncode == 0 and ok, f"--export-csv writes provenance.json with the build and the run ({prov})")
 
 # The run file is readable while fnet-simd writes it (SWMR, as proto/run_file.md says).
 try:
