@@ -14,6 +14,8 @@ namespace {
 constexpr int kBarWidth = 40;
 constexpr int kLabelWidth = 26;
 constexpr int kValueWidth = 12;
+// Frames a simulation publishes come seconds apart; gaps below this are a replay of stored frames.
+constexpr double kLiveGap = 0.01;
 
 std::string distance_text(const WatchPoint& p, const std::string& key) {
   const auto it = p.distances.find(key);
@@ -138,7 +140,7 @@ std::optional<double> WatchState::eta_seconds() const {
   for (std::size_t k = 1; k < arrivals.size(); ++k) gaps.push_back(arrivals[k] - arrivals[k - 1]);
   std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
   const double gap = gaps[gaps.size() / 2];
-  if (!(gap > 0)) return std::nullopt;
+  if (!(gap >= kLiveGap)) return std::nullopt;  // a replay, not the simulation's pace
   const double remaining = *planned_frames > last->frame + 1 ? *planned_frames - (last->frame + 1) : 0;
   return remaining * gap;
 }

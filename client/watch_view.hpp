@@ -55,8 +55,8 @@ struct WatchState {
   // it is the last planned frame.
   void add(const WatchPoint& point, double arrived = 0);
   // Seconds until the last planned frame at the rate the latest frames arrived (the median gap
-  // between their arrivals: a burst of replayed frames does not count); none before two gaps are
-  // known, without a plan, or once complete.
+  // between their arrivals); none before two gaps are known, without a plan, once complete, or
+  // while the frames arrive faster than a simulation publishes them (stored frames replayed).
   std::optional<double> eta_seconds() const;
 };
 

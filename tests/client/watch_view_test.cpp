@@ -120,7 +120,7 @@ TEST(WatchView, TheEtaFollowsTheRateFramesArrive) {
   EXPECT_DOUBLE_EQ(*s.eta_seconds(), 96 * 2.0);  // 96 frames left, one every 2 s
   EXPECT_THAT(render_watch_screen(s), HasSubstr("ETA 3m12s"));
   WatchState burst = state_with(100);  // frames replayed at once after a reconnection
-  for (std::uint32_t k = 0; k < 4; ++k) burst.add(point(k, 0.63, std::nullopt), 5.0);
+  for (std::uint32_t k = 0; k < 4; ++k) burst.add(point(k, 0.63, std::nullopt), 5.0 + 1e-4 * k);
   EXPECT_FALSE(burst.eta_seconds());
   EXPECT_EQ(duration_text(3725), "1h02m");
   EXPECT_EQ(duration_text(37), "37s");
