@@ -245,7 +245,11 @@ def _distance(args):
 
 def _read_file(path, run_file, read):
     """`read(f)` on the run file or analysis store at `path`; an unknown frame is a LookupError."""
-    with (store.open_run_file(path) if run_file else store.open_store(path)) as f:
+    try:
+        f = store.open_run_file(path) if run_file else store.open_store(path)
+    except OSError as e:  # h5py's message does not name the file
+        raise ValueError(f"{path}: not an HDF5 file that can be read ({_one_line(e)})") from e
+    with f:
         return read(f)
 
 
@@ -261,10 +265,10 @@ def _draw_network(args, record):
         record.update(run=f.run_id)
         return frames, figures.run_walls(f)
 
-    frames, box = _read_file(path, args.run_file, read)
+    frames, walls = _read_file(path, args.run_file, read)
     if len(frames) == 1:
-        return figures.network(frames[0], force=args.force, walls=box)
-    return figures.network_change(*frames, force=args.force, walls=box)
+        return figures.network(frames[0], force=args.force, walls=walls)
+    return figures.network_change(*frames, force=args.force, walls=walls)
 
 
 def _draw_served(args, c, record):
@@ -302,15 +306,15 @@ def _draw_served(args, c, record):
     if args.kind == "blocks":
         table = c.blocks(args.frame, args.other_frame, run=run, k=args.k, force=args.force, **_distance(args))
         whole = c.distance(args.frame, args.other_frame, run=run, force=args.force, **_distance(args))["value"]
-        network, box = None, None
+        network, walls = None, None
         if args.store or args.run_file:
             path = args.store or args.run_file
             record["source"] = path
-            network, box = _read_file(path, args.run_file, lambda f: (
+            network, walls = _read_file(path, args.run_file, lambda f: (
                 f.frame(args.frame) if args.run_file else f.network(args.frame), figures.run_walls(f)))
             if network is None:
                 raise ValueError(f"the store {path} does not keep the networks of its frames")
-        return figures.blocks(table, network=network, whole=whole, walls=box)
+        return figures.blocks(table, network=network, whole=whole, walls=walls)
     raise AssertionError(args.kind)
 
 

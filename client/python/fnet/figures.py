@@ -33,8 +33,7 @@ FORCE_UNIT = r"$f / \langle f \rangle$"  # a force over the mean force of its ne
 COLOUR_PERCENTILE = 99.0  # the top of a force colour scale: a few strong contacts do not wash out the rest
 # A diverging scale whose middle, no change, is a grey that shows on white.
 CHANGE_CMAP = LinearSegmentedColormap.from_list("fnet_change", ["#2166ac", "0.62", "#b2182b"])
-CELL_NORMALIZATION = ("each cell normalized by its own mean force: a cell's distance can exceed the whole "
-                      "frame's")
+CELL_NORMALIZATION = "each cell normalized by its own mean force:\na cell's distance can exceed the whole frame's"
 def _figure(width=6.4, height=4.8):
     fig = Figure(figsize=(width, height), layout="constrained")
     FigureCanvasAgg(fig)
@@ -238,8 +237,8 @@ def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True,
                                      gid="broken", zorder=3))
     ax.add_collection(LineCollection(segments[created], colors="tab:green", linewidths=1.2, gid="created", zorder=3))
     fig.colorbar(lines, ax=ax, shrink=0.7, extend="both" if biggest > span else "neither",
-                 label=f"change of {force} force, {FORCE_UNIT}, of the contacts in both\n(scale to the "
-                       f"{COLOUR_PERCENTILE:g}th percentile of |change|; max {biggest:.3g})")
+                 label=f"change of {force} force, {FORCE_UNIT}\n(scale to the {COLOUR_PERCENTILE:g}th "
+                       f"percentile of |change|; max {biggest:.3g})")
     handles = [Line2D([], [], color="tab:green", linewidth=1.2, label=f"created ({int(created.sum())})"),
                Line2D([], [], color="black", linewidth=0.9, linestyle=(0, (3, 2)),
                       label=f"broken ({int(broken.sum())})"),
@@ -459,7 +458,7 @@ def _blocks_over(table, network, whole, walls):
                                      linewidths=0.2 + 1.2 * np.minimum(forces / top, 1.0), gid="contacts", zorder=3))
     finite = value[np.isfinite(value)]
     cells = PatchCollection([Rectangle((b[0], b[2]), b[1] - b[0], b[3] - b[2]) for b in bounds.reshape(-1, 4)],
-                            array=value.reshape(-1), cmap="magma_r", alpha=0.45, edgecolor="black", linewidth=1.2,
+                            array=value.reshape(-1), cmap="YlOrRd", alpha=0.5, edgecolor="black", linewidth=1.2,
                             norm=Normalize(0, float(finite.max()) if len(finite) and finite.max() > 0 else 1.0),
                             gid="cells", zorder=2)
     ax.add_collection(cells)
