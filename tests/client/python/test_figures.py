@@ -82,8 +82,10 @@ def test_walls_are_where_the_run_recorded_its_grains_touching_them(run_file, tmp
             disks = figures.wall_disks(frame, walls)
             overlap = grain_wall_overlaps(frame, disks)
             recorded = set(frame.wall_contact_particles.tolist())
-            assert set(np.flatnonzero(overlap > 1e-9).tolist()) <= recorded <= set(
-                np.flatnonzero(overlap > -1e-9).tolist()), f"frame {index}"
+            # (1e-3 d: the contacts were found at the integrator's predicted positions, the frame
+            # records the corrected ones)
+            assert set(np.flatnonzero(overlap > 1e-3).tolist()) <= recorded <= set(
+                np.flatnonzero(overlap > -1e-3).tolist()), f"frame {index}"
             touching += len(recorded)
             lo, hi = figures.free_interior(frame, walls)
             np.testing.assert_allclose((hi - lo) ** 2 * frame.rho, np.pi * np.sum(frame.particles[:, 2] ** 2),
