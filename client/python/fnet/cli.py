@@ -1,15 +1,21 @@
 """`python3 -m fnet plot KIND ... --out FILE`: the paper's figures from a running fnet-server
-(or from files). Options are named as fnetctl's; exit codes are fnetctl's: 0 ok, 1 failure,
-2 usage (naming the bad option), 3 server unreachable, 4 unknown run or frame, 5 server error."""
+(or from files). Options are named as fnetctl's; exit codes are fnetctl's: 0 ok, 1 failure (an
+input file or answer it cannot read, output it cannot write), 2 usage (naming the bad option),
+3 server unreachable, 4 unknown run, frame or ensemble, 5 other server error; each failure is one
+line on stderr. A PNG carries where it came from as text chunks (fnet.provenance)."""
 
 import argparse
 import os
+import shlex
+import socket
 import sys
 
-from fnet import figures, store
-from fnet.rpc import DEFAULT_HOST, DEFAULT_PORT, Client, RpcError
+from fnet import figures, provenance, store
+from fnet.rpc import DEFAULT_HOST, DEFAULT_PORT, UNKNOWN_RUN, Client, RpcError
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_UNREACHABLE, EXIT_UNKNOWN, EXIT_SERVER = 0, 1, 2, 3, 4, 5
+EXIT_INTERRUPTED = 130
+UNKNOWN_CODES = (UNKNOWN_RUN, -32002, -32006)  # proto/api.md: unknown run, frame, ensemble
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2", "wasserstein")
 RATIOS = ("wasserstein1", "wasserstein2")
 
@@ -28,6 +34,20 @@ def _bounded(kind, lo=None, hi=None, what=""):
 
 FRAME = _bounded(int, 0, 2**32 - 1, "a frame index 0 ... 4294967295")
 PORT = _bounded(int, 1, 65535, "a port 1 ... 65535")
+DPI = _bounded(float, 10, 1200, "dots per inch 10 ... 1200")
+DEFAULT_DPI = 150
+
+
+def _size(text):
+    """--size W,H: the figure's width and height in inches, each in (0, 100]."""
+    parts = text.split(",")
+    try:
+        w, h = (float(v) for v in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected W,H in inches (e.g. 6.4,4.8), got {text!r}") from None
+    if not all(0 < v <= 100 for v in (w, h)):
+        raise argparse.ArgumentTypeError(f"expected W,H each above 0 and at most 100 inches, got {text!r}")
+    return w, h
 
 
 def _positive_float(text):
@@ -85,8 +105,19 @@ def _binned(args):
     return bool(getattr(args, "ensemble", None) or args.bins or args.bin_count or args.axis != "rho")
 
 
-def _out(parser):
+def _out(parser, y_scale=False):
     parser.add_argument("--out", required=True, help="the image file (its extension names the format: png, pdf, svg)")
+    g = parser.add_argument_group("figure")
+    g.add_argument("--title", help="the figure's title instead of its own ('' for none)")
+    g.add_argument("--size", type=_size, metavar="W,H", help="width and height in inches (default: the figure's)")
+    g.add_argument("--dpi", type=DPI, default=DEFAULT_DPI, help=f"dots per inch (default {DEFAULT_DPI})")
+    if y_scale:
+        scale = g.add_mutually_exclusive_group()
+        scale.add_argument("--log", dest="y_scale", action="store_const", const="log",
+                           help="logarithmic y axis (values <= 0 are left out)")
+        scale.add_argument("--linear", dest="y_scale", action="store_const", const="linear",
+                           help="linear y axis (the default)")
+        parser.set_defaults(y_scale="linear")
 
 
 def build_parser():
@@ -121,7 +152,7 @@ def build_parser():
     _bin_options(p)
     p.add_argument("--from", dest="from_", metavar="FRAME", type=FRAME, help="first frame (a run's series)")
     p.add_argument("--to", metavar="FRAME", type=FRAME, help="last frame (a run's series)")
-    _out(p)
+    _out(p, y_scale=True)
 
     p = kinds.add_parser("ensemble", help="Figs. 6, 8, 9: ensembles' mean ± standard error, one curve per "
                                           "--ensemble and --force")
@@ -129,7 +160,7 @@ def build_parser():
     p.add_argument("--ensemble", action="append", required=True, help="an ensemble (repeat to compare)")
     _distance_options(p, forces=True)
     _bin_options(p)
-    _out(p)
+    _out(p, y_scale=True)
 
     p = kinds.add_parser("ratio", help="Figs. 7, 10: d_B / d_W1 and d_B / d_W2 against rho")
     _endpoint(p)
@@ -142,7 +173,7 @@ def build_parser():
     p.add_argument("--essential", choices=("floor", "sentinel", "separate"), default="floor",
                    help="how classes that never die are matched")
     _bin_options(p)
-    _out(p)
+    _out(p, y_scale=True)
 
     p = kinds.add_parser("blocks", help="Tables II, III: distances cell by cell of a k x k grid")
     _endpoint(p)
@@ -151,6 +182,10 @@ def build_parser():
     p.add_argument("--other-frame", type=FRAME, required=True, help="the second frame")
     p.add_argument("--k", type=_bounded(int, 1, 16, "an integer 1 ... 16"), default=2, help="grid of k x k cells")
     _distance_options(p, metric_required=False)
+    packing = p.add_mutually_exclusive_group()
+    packing.add_argument("--store", help="draw the grid over --frame's packing, read from this analysis store (the "
+                                         "server's DATA_DIR/RUN.h5)")
+    packing.add_argument("--run-file", help="likewise, from the run file fnet-simd wrote (--out)")
     _out(p)
     parser.kind_parsers = kinds.choices  # for the checks argparse cannot make alone
 
@@ -208,51 +243,162 @@ def _distance(args):
     return {"metric": args.metric, "q": args.q, "dim": args.dim, "essential": args.essential}
 
 
-def _draw(args):
-    if args.kind == "network":
-        with (store.open_run_file(args.run_file) if args.run_file else store.open_store(args.store)) as f:
-            read = f.frame if args.run_file else f.network
-            frames = [read(k) for k in (args.frame, args.other_frame) if k is not None]
+def _read_file(path, run_file, read):
+    """`read(f)` on the run file or analysis store at `path`; an unknown frame is a LookupError."""
+    try:
+        f = store.open_run_file(path) if run_file else store.open_store(path)
+    except OSError as e:  # h5py's message does not name the file
+        raise ValueError(f"{path}: not an HDF5 file that can be read ({_one_line(e)})") from e
+    with f:
+        return read(f)
+
+
+def _draw_network(args, record):
+    path = args.run_file or args.store
+    record.update(source=path)
+
+    def read(f):
+        read_frame = f.frame if args.run_file else f.network
+        frames = [read_frame(k) for k in (args.frame, args.other_frame) if k is not None]
         if any(frame is None for frame in frames):
-            raise KeyError(f"the store {args.store} does not keep the networks of its frames (schema {f.schema})")
-        if len(frames) == 1:
-            return figures.network(frames[0], force=args.force)
-        return figures.network_change(*frames, force=args.force)
-    if args.kind == "diagram" and args.store:
-        with store.open_store(args.store) as s:
-            return figures.diagrams(s.diagram(args.frame, 0, args.force), s.diagram(args.frame, 1, args.force),
-                                    title=f"{s.run_id} frame {args.frame}, {args.force} forces")
-    with Client(args.host, args.port) as c:
-        if args.kind == "diagram":
-            d = [c.diagram(args.frame, run=args.run, dim=k, force=args.force) for k in (0, 1)]
-            return figures.diagrams(*d, title=f"{args.run or 'newest run'} frame {args.frame}, {args.force} forces")
-        if args.kind == "distances" and not _binned(args):
-            return figures.distances(c.series(run=args.run, force=args.force, from_=args.from_, to=args.to,
-                                              **_distance(args)))
-        if args.kind == "distances":
-            who = {"ensemble": args.ensemble} if args.ensemble else {"run": args.run or c.run()["run"]}
-            return figures.ensemble(c.ensemble_series(**who, force=args.force, **_distance(args), **_binning(args)))
-        if args.kind == "ensemble":
-            curves = [c.ensemble_series(ensemble=e, force=force, **_distance(args), **_binning(args))
-                      for e in args.ensemble for force in (args.force or ["normal"])]
-            return figures.ensemble(curves)
-        if args.kind == "ratio" and not _binned(args):
-            curves = [c.series(None, run=args.run, ratio=r, dim=args.dim, force=args.force, essential=args.essential)
-                      for r in (args.ratio or list(RATIOS))]
-            return figures.ratio(curves)
-        if args.kind == "ratio":
-            who = {"ensemble": args.ensemble} if args.ensemble else {"run": args.run or c.run()["run"]}
-            curves = [c.ensemble_series(**who, ratio=r, dim=args.dim, force=args.force, essential=args.essential,
-                                        **_binning(args))
-                      for r in (args.ratio or list(RATIOS))]
-            return figures.ratio(curves)
-        if args.kind == "blocks":
-            return figures.blocks(c.blocks(args.frame, args.other_frame, run=args.run, k=args.k, force=args.force,
-                                           **_distance(args)))
+            raise ValueError(f"the store {path} does not keep the networks of its frames (schema {f.schema})")
+        record.update(run=f.run_id)
+        return frames, figures.run_walls(f)
+
+    frames, walls = _read_file(path, args.run_file, read)
+    if len(frames) == 1:
+        return figures.network(frames[0], force=args.force, walls=walls)
+    return figures.network_change(*frames, force=args.force, walls=walls)
+
+
+def _draw_served(args, c, record):
+    """The figures drawn from the server's answers; `record` gets what provenance names."""
+    record["server_status"] = c.status()
+    if getattr(args, "ensemble", None):
+        record["ensemble"] = ",".join(args.ensemble) if isinstance(args.ensemble, list) else args.ensemble
+        run = None
+    else:
+        run = c.run(args.run)["run"]  # the newest run when none is named: every call then asks for that one
+        record["run"] = run
+    if args.kind == "diagram":
+        d = [c.diagram(args.frame, run=run, dim=k, force=args.force) for k in (0, 1)]
+        title = args.title if args.title is not None else f"{run} frame {args.frame}, {args.force} forces"
+        return figures.diagrams(*d, title=title)
+    if args.kind == "distances" and not _binned(args):
+        return figures.distances(c.series(run=run, force=args.force, from_=args.from_, to=args.to, **_distance(args)))
+    if args.kind == "distances":
+        who = {"ensemble": args.ensemble} if args.ensemble else {"run": run}
+        return figures.ensemble(c.ensemble_series(**who, force=args.force, **_distance(args), **_binning(args)))
+    if args.kind == "ensemble":
+        curves = [c.ensemble_series(ensemble=e, force=force, **_distance(args), **_binning(args))
+                  for e in args.ensemble for force in (args.force or ["normal"])]
+        return figures.ensemble(curves)
+    if args.kind == "ratio" and not _binned(args):
+        curves = [c.series(None, run=run, ratio=r, dim=args.dim, force=args.force, essential=args.essential)
+                  for r in (args.ratio or list(RATIOS))]
+        return figures.ratio(curves)
+    if args.kind == "ratio":
+        who = {"ensemble": args.ensemble} if args.ensemble else {"run": run}
+        curves = [c.ensemble_series(**who, ratio=r, dim=args.dim, force=args.force, essential=args.essential,
+                                    **_binning(args))
+                  for r in (args.ratio or list(RATIOS))]
+        return figures.ratio(curves)
+    if args.kind == "blocks":
+        table = c.blocks(args.frame, args.other_frame, run=run, k=args.k, force=args.force, **_distance(args))
+        whole = c.distance(args.frame, args.other_frame, run=run, force=args.force, **_distance(args))["value"]
+        network, walls = None, None
+        if args.store or args.run_file:
+            path = args.store or args.run_file
+            record["source"] = path
+            network, walls = _read_file(path, args.run_file, lambda f: (
+                f.frame(args.frame) if args.run_file else f.network(args.frame), figures.run_walls(f)))
+            if network is None:
+                raise ValueError(f"the store {path} does not keep the networks of its frames")
+        return figures.blocks(table, network=network, whole=whole, walls=walls)
     raise AssertionError(args.kind)
 
 
+def _draw(args, record):
+    if args.kind == "network":
+        return _draw_network(args, record)
+    if args.kind == "diagram" and args.store:
+        record.update(source=args.store)
+
+        def read(s):
+            record.update(run=s.run_id)
+            d = [s.diagram(args.frame, k, args.force) for k in (0, 1)]
+            return d, f"{s.run_id} frame {args.frame}, {args.force} forces"
+        d, title = _read_file(args.store, False, read)
+        return figures.diagrams(*d, title=args.title if args.title is not None else title)
+    try:
+        with Client(args.host, args.port) as c:
+            try:
+                return _draw_served(args, c, record)
+            except RpcError as e:
+                raise c.explain_unknown_run(e) from None
+    except OSError as e:
+        # Before the server answered, any OSError is the connection's; after, a file's (h5py's) unless
+        # it is a socket's.
+        if "server_status" not in record or isinstance(e, (ConnectionError, TimeoutError, socket.gaierror)):
+            raise ServerUnreachable(f"cannot reach fnet-server at {args.host}:{args.port}: {_one_line(e)} (see "
+                                    "--host/--port, FNET_HOST/FNET_PORT)") from e
+        raise
+
+
+class ServerUnreachable(Exception):
+    """The server could not be reached, or the connection to it broke."""
+
+
+def _finish(fig, args):
+    """The figure options: --title (the figure's own title replaced; diagrams take it when drawn),
+    --log/--linear, --size."""
+    if args.title is not None and args.kind != "diagram":
+        fig.axes[0].set_title(args.title)
+    if getattr(args, "y_scale", None):
+        fig.axes[0].set_yscale(args.y_scale)
+    if args.size:
+        fig.set_size_inches(*args.size)
+
+
+def figure(args, record=None):
+    """The figure `args` (as build_parser() parsed them) asks for, its options applied; `record`
+    (a dict) gets what its provenance names."""
+    record = {} if record is None else record
+    fig = _draw(args, record)
+    _finish(fig, args)
+    return fig
+
+
+def _provenance(args, argv, record):
+    """fnet.provenance.describe() of a figure: the command, the server's build, run, frames, the
+    distance asked for."""
+    extra = {"command": shlex.join(["python3", "-m", "fnet", *argv]), "figure": args.kind}
+    for key in ("run", "ensemble", "source"):
+        if record.get(key):
+            extra[key] = record[key]
+    for key in ("frame", "other_frame", "metric", "q", "dim", "force", "k", "ratio", "y_scale"):
+        value = getattr(args, key, None)
+        if value is not None:
+            extra[key] = ",".join(map(str, value)) if isinstance(value, list) else value
+    convention = getattr(args, "essential", None) or "none (no distance drawn)"
+    return provenance.describe(server_status=record.get("server_status"), convention=convention, **extra)
+
+
+def _save(fig, args, argv, record):
+    if os.path.splitext(args.out)[1].lower() == ".png":
+        fig.savefig(args.out, dpi=args.dpi, metadata=provenance.png_metadata(_provenance(args, argv, record)))
+    else:
+        fig.savefig(args.out, dpi=args.dpi)
+
+
+def _one_line(e):
+    """An exception as one line: a KeyError's text without its quotes."""
+    text = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
+    return " ".join(str(text).split()) or type(e).__name__
+
+
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command == "paper-report":
@@ -261,28 +407,35 @@ def main(argv=None):
             return paper.main(args)
         except RpcError as e:
             print(f"python3 -m fnet paper-report: {e.message}", file=sys.stderr)
-            return EXIT_UNKNOWN if e.code in (-32001, -32002, -32006) else EXIT_SERVER
+            return EXIT_UNKNOWN if e.code in UNKNOWN_CODES else EXIT_SERVER
         except (ConnectionError, OSError) as e:
             print(f"python3 -m fnet: cannot reach fnet-server at {args.host}:{args.port}: {e}", file=sys.stderr)
             return EXIT_UNREACHABLE
     _check(parser, args)
+    prefix = f"python3 -m fnet plot {args.kind}"
+    record = {}
     try:
-        fig = _draw(args)
-        fig.savefig(args.out, dpi=150)
+        fig = figure(args, record)
+    except KeyboardInterrupt:
+        return EXIT_INTERRUPTED
     except RpcError as e:
-        print(f"python3 -m fnet plot {args.kind}: {e.message}", file=sys.stderr)
-        if e.code in (-32001, -32002, -32006):
-            return EXIT_UNKNOWN  # an unknown run, frame or ensemble
+        print(f"{prefix}: {' '.join(str(e.message).split())}", file=sys.stderr)
+        if e.code in UNKNOWN_CODES:
+            return EXIT_UNKNOWN
         return EXIT_USAGE if e.code == -32602 else EXIT_SERVER
-    except (ConnectionError, OSError) as e:
-        if isinstance(e, FileNotFoundError) or not hasattr(args, "host"):
-            print(f"python3 -m fnet plot {args.kind}: {e}", file=sys.stderr)
-            return EXIT_FAILURE
-        print(f"python3 -m fnet: cannot reach fnet-server at {args.host}:{args.port}: {e} (see --host/--port, "
-              "FNET_HOST/FNET_PORT)", file=sys.stderr)
+    except ServerUnreachable as e:
+        print(f"python3 -m fnet: {e}", file=sys.stderr)
         return EXIT_UNREACHABLE
-    except (KeyError, ValueError) as e:
-        print(f"python3 -m fnet plot {args.kind}: {e}", file=sys.stderr)
+    except LookupError as e:  # a frame the file does not hold
+        print(f"{prefix}: {_one_line(e)}", file=sys.stderr)
+        return EXIT_UNKNOWN
+    except Exception as e:  # noqa: BLE001 -- a file that is not what it should be, say: one line, no traceback
+        print(f"{prefix}: {_one_line(e)}", file=sys.stderr)
+        return EXIT_FAILURE
+    try:
+        _save(fig, args, argv, record)
+    except Exception as e:  # noqa: BLE001
+        print(f"{prefix}: cannot write --out {args.out}: {_one_line(e)}", file=sys.stderr)
         return EXIT_FAILURE
     print(args.out)
     return EXIT_OK

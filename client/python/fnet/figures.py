@@ -3,10 +3,14 @@ pyplot state: safe in scripts, servers and notebooks, where a returned Figure di
 
 Each function takes the data it plots — what fnet.Client or fnet.store return — and returns the
 Figure. The artists that carry the data have a gid (`artist.get_gid()`), so that what was drawn can
-be checked against what was served: "contacts", "grains", "finite", "never_dies", "distance",
-"z", "mean", "ratio", "blocks".
+be checked against what was served: "contacts", "created", "broken", "grains", "walls", "finite",
+"never_dies", "count", "diagonal", "distance", "z", "mean", "ratio", "blocks", "cells".
+
+Lengths are in d, the mean grain diameter (fnet-simd's unit of length, and that of the LAMMPS
+runs fnet reads); forces in units of the mean force of the network they belong to.
 """
 
+import json
 import math
 
 import numpy as np
@@ -18,14 +22,18 @@ except ImportError as e:  # a python3 other than Debian's (a pyenv one, say) may
                       f"python3-matplotlib ({e})") from e
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection, PatchCollection
-from matplotlib.colors import Normalize, TwoSlopeNorm
+from matplotlib.colors import LinearSegmentedColormap, Normalize, TwoSlopeNorm
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Rectangle
 
 METRIC_SYMBOLS = {"bottleneck": "d_B", "wasserstein1": "d_{W1}", "wasserstein2": "d_{W2}"}
 AXIS_LABELS = {"rho": r"$\rho$", "rho_minus_rho_j": r"$\rho - \rho_J$"}
-
-
+FORCE_UNIT = r"$f / \langle f \rangle$"  # a force over the mean force of its network
+COLOUR_PERCENTILE = 99.0  # the top of a force colour scale: a few strong contacts do not wash out the rest
+# A diverging scale whose middle, no change, is a grey that shows on white.
+CHANGE_CMAP = LinearSegmentedColormap.from_list("fnet_change", ["#2166ac", "0.62", "#b2182b"])
+CELL_NORMALIZATION = "each cell normalized by its own mean force:\na cell's distance can exceed the whole frame's"
 def _figure(width=6.4, height=4.8):
     fig = Figure(figsize=(width, height), layout="constrained")
     FigureCanvasAgg(fig)
@@ -51,6 +59,75 @@ def normalized_network(frame, force="normal"):
     return pairs, (values / values.mean() if len(values) else values)
 
 
+def colour_top(values, percentile=COLOUR_PERCENTILE):
+    """The top of a colour scale for `values` (>= 0): their `percentile`-th percentile, or their
+    maximum when that is 0; 1 when there are none or all are 0."""
+    values = np.asarray(values, dtype=np.float64)
+    values = values[np.isfinite(values)]
+    if not len(values):
+        return 1.0
+    top = float(np.percentile(values, percentile))
+    if top <= 0:
+        top = float(values.max())
+    return top if top > 0 else 1.0
+
+
+def run_walls(source):
+    """The walls of an fnet-simd run as its parameters set them, {"box": the side of the free
+    interior at the start, "wall_diameter"} in d, from a run file (fnet.store.RunFile: its config),
+    an analysis store (fnet.store.Store: its announcement's config_json) or a dict of the run's
+    parameters (run.get's parameters["config"]); None when the run does not record them (a
+    recorded LAMMPS run, say)."""
+    if isinstance(source, dict):
+        config = source
+    elif hasattr(source, "config"):
+        config = source.config
+    else:
+        text = (source.announcement() or {}).get("config_json") or "{}"
+        try:
+            config = json.loads(text)
+        except ValueError:
+            config = {}
+    if not isinstance(config, dict) or config.get("box") is None:
+        return None
+    return {"box": float(config["box"]), "wall_diameter": float(config.get("wall_diameter", 1.0))}
+
+
+def free_interior(frame, walls):
+    """(lo, hi): the square [lo, hi]² between the walls at `frame`, in d. fnet-simd's walls start
+    around [0, box]² and move inward symmetrically, and a frame's ρ is its grains' area over the
+    interior's, so the side is sqrt(Σ π r² / ρ) and the centre box / 2."""
+    box = walls["box"]
+    r = frame.particles[:, 2]
+    if not len(r) or not frame.rho > 0:
+        raise ValueError(f"frame {frame.index}: the free interior needs grains and a packing fraction > 0")
+    side = math.sqrt(math.pi * float(np.sum(r * r)) / frame.rho)
+    if not 0 < box or side > box * (1 + 1e-9):
+        raise ValueError(f"box {box!r}: smaller than the free interior of frame {frame.index} ({side:.6g} d, from "
+                         f"its grains and rho {frame.rho:.6g}); is it this run's box?")
+    return 0.5 * (box - side), 0.5 * (box + side)
+
+
+def wall_disks(frame, walls):
+    """The wall particles at `frame`, an (n, 3) array of x, y, r in d, placed as fnet-simd places
+    them (server/sim/walls.cpp): four rows of touching disks of the wall diameter whose centres
+    form a square ring half a diameter outside the free interior, bottom, right, top, left, each
+    row moved inward by the walls' offset (free_interior)."""
+    box, dw = walls["box"], walls["wall_diameter"]
+    lo_interior, _ = free_interior(frame, walls)
+    ring = box + dw
+    per_side = math.ceil(ring / dw - 1e-9)
+    t = np.arange(per_side) * (ring / per_side)
+    lo, hi = -0.5 * dw + lo_interior, box + 0.5 * dw - lo_interior
+    x = np.concatenate([-0.5 * dw + t, np.full(per_side, hi), box + 0.5 * dw - t, np.full(per_side, lo)])
+    y = np.concatenate([np.full(per_side, lo), -0.5 * dw + t, np.full(per_side, hi), box + 0.5 * dw - t])
+    return np.column_stack([x, y, np.full(4 * per_side, 0.5 * dw)])
+
+
+def _segments(xy, pairs):
+    return np.stack([xy[pairs[:, 0]], xy[pairs[:, 1]]], axis=1).reshape(-1, 2, 2)
+
+
 def _grains(ax, particles):
     grains = PatchCollection([Circle((x, y), r) for x, y, r in particles], facecolor="none", edgecolor="0.6",
                              linewidth=0.3, gid="grains")
@@ -58,102 +135,185 @@ def _grains(ax, particles):
     return grains
 
 
-def _frame_axes(ax, particles):
-    if len(particles):
-        lo = (particles[:, :2] - particles[:, 2:3]).min(axis=0)
-        hi = (particles[:, :2] + particles[:, 2:3]).max(axis=0)
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
+def _packing_axes(ax, frame, walls):
+    """The walls (the "walls" collection of wall disks, or a rectangle), limits and length labels of
+    a frame's axes; returns what the walls drawn are, for the caption."""
+    particles = frame.particles
+    lo = (particles[:, :2] - particles[:, 2:3]).min(axis=0) if len(particles) else np.zeros(2)
+    hi = (particles[:, :2] + particles[:, 2:3]).max(axis=0) if len(particles) else np.ones(2)
+    if walls is not None:
+        disks = wall_disks(frame, walls)
+        ax.add_collection(PatchCollection([Circle((x, y), r) for x, y, r in disks], facecolor="0.75",
+                                          edgecolor="0.35", linewidth=0.4, gid="walls"))
+        lo = np.minimum(lo, (disks[:, :2] - disks[:, 2:3]).min(axis=0))
+        hi = np.maximum(hi, (disks[:, :2] + disks[:, 2:3]).max(axis=0))
+        note = "grey disks: the walls, placed from the run's box and this frame's ρ"
+    else:
+        ax.add_patch(Rectangle(tuple(lo), *(hi - lo), fill=False, edgecolor="0.3", linestyle="--", linewidth=1.0,
+                               gid="walls"))
+        note = "dashed: the grains' bounding box (the run records no walls)"
+    pad = 0.01 * float(max(hi - lo))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    ax.set_xlabel(r"$x / d$")
+    ax.set_ylabel(r"$y / d$")
+    return note
 
 
-def network(frame, force="normal", cmap="viridis", grains=True):
+def _frame_title(frame):
+    return f"{frame.get('run', '')} frame {frame.index}, " + r"$\rho$" + f" = {frame.rho:.4f}, Z = {frame.z:.3f}"
+
+
+def network(frame, force="normal", cmap="viridis", grains=True, walls=None):
     """Fig. 1: a frame's force network. Contacts are segments between grain centres coloured by
-    force / mean force (the "contacts" LineCollection: get_segments(), get_array()), grains are
-    circles (the "grains" collection), in `frame`'s positions (a fnet.store.Frame)."""
+    force / mean force (the "contacts" LineCollection: get_segments(), get_array()), the colour
+    scale topped at the 99th percentile (colour_top; the maximum is in its label); grains are
+    circles (the "grains" collection), in `frame`'s positions (a fnet.store.Frame). The "walls"
+    are the wall disks when the run's `walls` are given (run_walls, wall_disks), else the grains'
+    bounding box, dashed; the caption says which."""
     pairs, values = normalized_network(frame, force)
     xy = frame.particles[:, :2]
-    fig = _figure(6.4, 6.4)
+    fig = _figure(6.4, 6.6)
     ax = fig.add_subplot()
     if grains:
         _grains(ax, frame.particles)
-    top = values.max() if len(values) else 1.0
-    lines = LineCollection(np.stack([xy[pairs[:, 0]], xy[pairs[:, 1]]], axis=1).reshape(-1, 2, 2), array=values,
-                           cmap=cmap, norm=Normalize(0, top), linewidths=0.4 + 1.6 * values / top, gid="contacts")
+    top = colour_top(values)
+    biggest = float(values.max()) if len(values) else 0.0
+    lines = LineCollection(_segments(xy, pairs), array=values, cmap=cmap, norm=Normalize(0, top),
+                           linewidths=0.4 + 1.6 * np.minimum(values / top, 1.0), gid="contacts")
     ax.add_collection(lines)
-    fig.colorbar(lines, ax=ax, shrink=0.8, label=f"{force} force / mean")
-    _frame_axes(ax, frame.particles)
-    ax.set_title(f"{frame.get('run', '')} frame {frame.index}, " + r"$\rho$" + f" = {frame.rho:.4f}, Z = {frame.z:.3f}")
+    fig.colorbar(lines, ax=ax, shrink=0.8, extend="max" if biggest > top else "neither",
+                 label=f"{force} force, {FORCE_UNIT}\n(scale to the {COLOUR_PERCENTILE:g}th percentile; "
+                       f"max {biggest:.3g})")
+    fig.supxlabel(_packing_axes(ax, frame, walls), fontsize="small")
+    ax.set_title(_frame_title(frame))
     return fig
 
 
-def network_change(before, after, force="normal", cmap="RdBu_r", grains=True):
-    """The difference between two frames' force networks: every contact of either frame, drawn in
-    `after`'s positions, coloured by its normalized force in `after` minus that in `before` (0 where
-    the contact is absent). The "contacts" LineCollection's get_array() holds the differences, in
-    the order of `contact_change(before, after, force)`."""
-    pairs, change = contact_change(before, after, force)
-    xy = after.particles[:, :2]
-    fig = _figure(6.4, 6.4)
-    ax = fig.add_subplot()
-    if grains:
-        _grains(ax, after.particles)
-    span = float(np.abs(change).max()) if len(change) and np.abs(change).max() > 0 else 1.0
-    lines = LineCollection(np.stack([xy[pairs[:, 0]], xy[pairs[:, 1]]], axis=1).reshape(-1, 2, 2), array=change,
-                           cmap=cmap, norm=TwoSlopeNorm(0, -span, span), linewidths=0.4 + 1.6 * np.abs(change) / span,
-                           gid="contacts")
-    ax.add_collection(lines)
-    fig.colorbar(lines, ax=ax, shrink=0.8, label=f"change of {force} force / mean")
-    _frame_axes(ax, after.particles)
-    ax.set_title(f"{after.get('run', '')} frame {before.index} → {after.index}")
-    return fig
+def contact_states(before, after, force="normal"):
+    """(pairs, f_before, f_after): the contacts of either frame's network, as (i, j) with i < j
+    sorted, and each one's normalized force in `before` and in `after`, NaN where it is not in that
+    frame's network (created: NaN before; broken: NaN after)."""
+    forces = {}
+    for k, frame in enumerate((before, after)):
+        pairs, values = normalized_network(frame, force)
+        for (i, j), v in zip(pairs.tolist(), values.tolist()):
+            forces.setdefault((min(i, j), max(i, j)), [math.nan, math.nan])[k] = v
+    keys = sorted(forces)
+    states = np.array([forces[key] for key in keys], dtype=np.float64).reshape(-1, 2)
+    return np.array(keys, dtype=np.int64).reshape(-1, 2), states[:, 0], states[:, 1]
 
 
 def contact_change(before, after, force="normal"):
     """(pairs, change): the contacts of either frame's network, sorted by (i, j), and for each its
     normalized force in `after` minus that in `before` (0 where absent)."""
-    forces = {}
-    for sign, frame in ((-1.0, before), (1.0, after)):
-        pairs, values = normalized_network(frame, force)
-        for (i, j), v in zip(pairs.tolist(), values.tolist()):
-            key = (min(i, j), max(i, j))
-            forces[key] = forces.get(key, 0.0) + sign * v
-    keys = sorted(forces)
-    return np.array(keys, dtype=np.int64).reshape(-1, 2), np.array([forces[k] for k in keys], dtype=np.float64)
+    pairs, f_before, f_after = contact_states(before, after, force)
+    return pairs, np.nan_to_num(f_after, nan=0.0) - np.nan_to_num(f_before, nan=0.0)
 
 
-def never_dies_level(points):
-    """Where a diagram's never-dying classes are drawn: a line below every finite death."""
-    finite = points[points[:, 1] != -1] if len(points) else points
-    values = np.concatenate([points[:, 0], finite[:, 1]]) if len(points) else np.array([0.0, 1.0])
-    lo, hi = float(min(values.min(), 0.0)), float(values.max())
-    return lo - 0.1 * max(hi - lo, 1e-12)
+def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True, walls=None):
+    """The difference between two frames' force networks, drawn in `after`'s positions: the
+    contacts of both networks (the "contacts" LineCollection) coloured by their normalized force in
+    `after` minus that in `before` (the scale topped at the 99th percentile of |change|), the
+    contacts created (in `after` only: "created", green, solid) and broken (in `before` only:
+    "broken", grey, dashed); each collection's contacts in the order of contact_states. `walls`
+    as in network()."""
+    pairs, f_before, f_after = contact_states(before, after, force)
+    created, broken = np.isnan(f_before), np.isnan(f_after)
+    kept = ~created & ~broken
+    change = f_after[kept] - f_before[kept]
+    segments = _segments(after.particles[:, :2], pairs)
+    fig = _figure(6.4, 6.6)
+    ax = fig.add_subplot()
+    if grains:
+        _grains(ax, after.particles)
+    span = colour_top(np.abs(change))
+    biggest = float(np.abs(change).max()) if len(change) else 0.0
+    lines = LineCollection(segments[kept], array=change, cmap=cmap, norm=TwoSlopeNorm(0, -span, span),
+                           linewidths=0.4 + 1.6 * np.minimum(np.abs(change) / span, 1.0), gid="contacts", zorder=2)
+    ax.add_collection(lines)
+    ax.add_collection(LineCollection(segments[broken], colors="black", linewidths=0.9, linestyles=(0, (3, 2)),
+                                     gid="broken", zorder=3))
+    ax.add_collection(LineCollection(segments[created], colors="tab:green", linewidths=1.2, gid="created", zorder=3))
+    fig.colorbar(lines, ax=ax, shrink=0.7, extend="both" if biggest > span else "neither",
+                 label=f"change of {force} force, {FORCE_UNIT}\n(scale to the {COLOUR_PERCENTILE:g}th "
+                       f"percentile of |change|; max {biggest:.3g})")
+    handles = [Line2D([], [], color="tab:green", linewidth=1.2, label=f"created ({int(created.sum())})"),
+               Line2D([], [], color="black", linewidth=0.9, linestyle=(0, (3, 2)),
+                      label=f"broken ({int(broken.sum())})"),
+               Line2D([], [], color=lines.cmap(0.5), linewidth=1.2,
+                      label=f"in both ({int(kept.sum())}): colour = change")]
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize="small",
+              frameon=False)
+    fig.supxlabel(_packing_axes(ax, after, walls), fontsize="small")
+    ax.set_title(f"{after.get('run', '')} frame {before.index} → {after.index}, " + r"$\rho$"
+                 + f" = {before.rho:.4f} → {after.rho:.4f}")
+    return fig
+
+
+def multiplicity(points):
+    """(distinct, counts): the distinct rows of an (n, 2) array of points, sorted, and how many
+    times each occurs."""
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if not len(points):
+        return points, np.zeros(0, dtype=np.int64)
+    distinct, counts = np.unique(points, axis=0, return_counts=True)
+    return distinct, counts.astype(np.int64)
+
+
+def marker_area(counts, base=14.0):
+    """The marker area (points²) of a diagram point standing for `counts` coinciding points: it
+    grows as the count's square root (a count above 1 is also written beside it)."""
+    return base * np.sqrt(np.asarray(counts, dtype=np.float64))
+
+
+def _counted_scatter(ax, xy, counts, gid, **style):
+    ax.scatter(xy[:, 0], xy[:, 1], s=marker_area(counts), gid=gid, **style)
+    for (x, y), n in zip(xy.tolist(), counts.tolist()):
+        if n > 1:
+            ax.annotate(f"×{n}", (x, y), xytext=(4, 3), textcoords="offset points", fontsize=7, color="0.2",
+                        gid="count")
 
 
 def diagrams(pd0, pd1, title=None):
     """Fig. 3: persistence diagrams PD0 and PD1 (each an (n, 2) array of birth, death; death -1:
-    never dies), birth on x, death on y. Finite points are the "finite" scatter of each axes;
-    classes that never die are drawn on a separate line below, the "never_dies" scatter, at
-    y = never_dies_level(points)."""
-    fig = _figure(10, 4.8)
+    never dies), birth on x, death on y, in units of the mean force, with the diagonal (the
+    "diagonal" line). Coinciding points are drawn once (multiplicity): the "finite" scatter's
+    offsets are the distinct finite points, each with a marker area by its count (marker_area) and
+    the count written beside it (a "count" annotation) when above 1. Classes that never die are the
+    "never_dies" scatter on a strip of their own above (the axes labelled "PDk never dies"), at
+    their birth, y 0, counted likewise. The legend gives the number of points of each kind."""
+    fig = _figure(10, 5.4)
+    grid = fig.add_gridspec(2, 2, height_ratios=(1, 7))
     for k, points in enumerate((pd0, pd1)):
-        ax = fig.add_subplot(1, 2, k + 1)
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         essential = points[:, 1] == -1
-        finite, forever = points[~essential], points[essential]
-        level = never_dies_level(points)
-        top = float(points[:, 0].max()) if len(points) else 1.0
-        ax.plot([level, top], [level, top], color="0.7", linewidth=0.8)
-        ax.scatter(finite[:, 0], finite[:, 1], s=10, color="C0", label="finite", gid="finite")
-        ax.axhline(level, color="0.7", linestyle="--", linewidth=0.8)
-        ax.scatter(forever[:, 0], np.full(len(forever), level), s=12, marker="^", color="C3",
-                   label=f"never dies ({len(forever)})", gid="never_dies")
-        ax.set_xlabel("birth (force / mean)")
-        ax.set_ylabel("death (force / mean)")
-        ax.set_title(f"PD{k}: {len(points)} points")
-        ax.legend(loc="upper left", fontsize="small")
+        finite, finite_counts = multiplicity(points[~essential])
+        forever, forever_counts = multiplicity(np.column_stack([points[essential, 0], np.zeros(essential.sum())]))
+        ax = fig.add_subplot(grid[1, k], label=f"PD{k}")
+        strip = fig.add_subplot(grid[0, k], sharex=ax, label=f"PD{k} never dies")
+        top = 1.05 * max(float(points[:, 0].max()) if len(points) else 0.0,
+                         float(finite[:, 1].max()) if len(finite) else 0.0, 1e-12)
+        ax.plot([0, top], [0, top], color="0.6", linewidth=0.8, gid="diagonal")
+        _counted_scatter(ax, finite, finite_counts, "finite", color="C0", edgecolor="none", alpha=0.8)
+        _counted_scatter(strip, forever, forever_counts, "never_dies", color="C3", marker="^", edgecolor="none")
+        ax.set_xlim(-0.02 * top, top)  # a margin, so that a marker at 0 shows whole
+        ax.set_ylim(-0.02 * top, top)
+        ax.set_xlabel(f"birth, {FORCE_UNIT}")
+        ax.set_ylabel(f"death, {FORCE_UNIT}")
+        strip.set_ylim(-1, 1)
+        strip.set_yticks([])
+        strip.set_ylabel("never\ndies", rotation=0, ha="right", va="center", fontsize="small")
+        strip.tick_params(labelbottom=False)
+        strip.set_title(f"PD{k}: {len(points)} points")
+        ax.legend(handles=[
+            Line2D([], [], color="C0", marker="o", linestyle="none",
+                   label=f"finite: {len(points) - int(essential.sum())} ({len(finite)} distinct)"),
+            Line2D([], [], color="C3", marker="^", linestyle="none",
+                   label=f"never die (death −1): {int(essential.sum())} ({len(forever)} distinct)"),
+            Line2D([], [], color="0.6", linewidth=0.8, label="birth = death"),
+            Line2D([], [], color="none", label="×n: n coinciding points")], loc="upper left", fontsize="small")
     if title:
         fig.suptitle(title)
     return fig
@@ -236,13 +396,28 @@ def block_text(value):
     return "∞" if math.isinf(value) else f"{value:.3g}"
 
 
-def blocks(table):
-    """Tables II, III: the k x k block distances of blocks.get (as Client.blocks returns it) as a
-    heat map (the "blocks" image, row 0 = lowest y at the bottom), each cell's value written in it
-    (block_text), the largest framed."""
+def _normalization_note(table, whole):
+    note = CELL_NORMALIZATION
+    if whole is not None:
+        note += f" ({_metric_label(table).split(' PD')[0]} of the whole frame: {block_text(float(whole))})"
+    return note
+
+
+def blocks(table, network=None, whole=None, walls=None):
+    """Tables II, III: the k x k block distances of blocks.get (as Client.blocks returns it).
+
+    Without `network`, a heat map (the "blocks" image, row 0 = lowest y at the bottom), each cell's
+    value written in it (block_text), the largest framed. With `network` (the fnet.store.Frame of
+    the table's `frame` or `other_frame`), the grid is drawn over that frame's packing at the cells'
+    bounds for it: the "cells" rectangles (their get_array() the values, row by row) over the
+    network's "contacts", each value written in its cell. Either way the figure states that each
+    cell is normalized by its own mean force, with the distance of the whole frame when `whole` is
+    given (a cell's distance can exceed it); `walls` as in network()."""
+    if network is not None:
+        return _blocks_over(table, network, whole, walls)
     value = np.asarray(table["value"], dtype=np.float64)
     k = value.shape[0]
-    fig = _figure(5.6, 4.8)
+    fig = _figure(5.6, 5.0)
     ax = fig.add_subplot()
     finite = value[np.isfinite(value)]
     image = ax.imshow(np.where(np.isfinite(value), value, np.nan), origin="lower", cmap="magma_r",
@@ -260,6 +435,47 @@ def blocks(table):
     ax.set_yticks(range(k))
     ax.set_xlabel("column (x)")
     ax.set_ylabel("row (y)")
-    fig.colorbar(image, ax=ax, label=_metric_label(table))
+    fig.colorbar(image, ax=ax, label=_metric_label(table) + ", per cell")
     ax.set_title(f"{table.get('run', '')} frames {table.get('frame')} → {table.get('other_frame')}, k = {k}")
+    fig.supxlabel(_normalization_note(table, whole), fontsize="small")
+    return fig
+
+
+def _blocks_over(table, network, whole, walls):
+    if network.index not in (table.get("frame"), table.get("other_frame")):
+        raise ValueError(f"network: frame {network.index} is neither frame of the table ({table.get('frame')}, "
+                         f"{table.get('other_frame')})")
+    which = 0 if network.index == table.get("frame") else 1
+    value = np.asarray(table["value"], dtype=np.float64)
+    bounds = np.asarray(table["bounds"], dtype=np.float64)[:, :, which]  # [row, col] -> x_lo, x_hi, y_lo, y_hi
+    k = value.shape[0]
+    fig = _figure(6.6, 6.8)
+    ax = fig.add_subplot()
+    _grains(ax, network.particles)
+    pairs, forces = normalized_network(network, table.get("force", "normal"))
+    top = colour_top(forces)
+    ax.add_collection(LineCollection(_segments(network.particles[:, :2], pairs), colors="0.15",
+                                     linewidths=0.2 + 1.2 * np.minimum(forces / top, 1.0), gid="contacts", zorder=3))
+    finite = value[np.isfinite(value)]
+    cells = PatchCollection([Rectangle((b[0], b[2]), b[1] - b[0], b[3] - b[2]) for b in bounds.reshape(-1, 4)],
+                            array=value.reshape(-1), cmap="YlOrRd", alpha=0.5, edgecolor="black", linewidth=1.2,
+                            norm=Normalize(0, float(finite.max()) if len(finite) and finite.max() > 0 else 1.0),
+                            gid="cells", zorder=2)
+    ax.add_collection(cells)
+    for r in range(k):
+        for c in range(k):
+            x_lo, x_hi, y_lo, y_hi = bounds[r, c]
+            ax.text(0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi), block_text(float(value[r, c])), ha="center",
+                    va="center", fontsize=11, color="black", gid=f"block_{r}_{c}", zorder=5,
+                    bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1.5})
+    largest = table.get("largest")
+    if largest:
+        x_lo, x_hi, y_lo, y_hi = bounds[largest["row"], largest["col"]]
+        ax.add_patch(Rectangle((x_lo, y_lo), x_hi - x_lo, y_hi - y_lo, fill=False, edgecolor="C0", linewidth=3,
+                               gid="largest", zorder=4))
+    _packing_axes(ax, network, walls)
+    fig.colorbar(cells, ax=ax, shrink=0.8, label=_metric_label(table) + ", per cell")
+    ax.set_title(f"{table.get('run', '')} frames {table.get('frame')} → {table.get('other_frame')}, k = {k}, "
+                 f"drawn over frame {network.index}")
+    fig.supxlabel(_normalization_note(table, whole), fontsize="small")
     return fig

@@ -8,7 +8,6 @@ Both are appended to while they are read: call `refresh()` to see frames committ
 
 import json
 
-import h5py
 import numpy as np
 
 from fnet.arrays import Result
@@ -38,8 +37,18 @@ def _fixed_strings(dataset, n):
     return [bytes(v).rstrip(b"\0").decode() for v in dataset[:n]]
 
 
+def _h5py():
+    """h5py, imported here rather than with fnet: the RPC client works without it."""
+    try:
+        import h5py
+    except ImportError as e:  # a python3 other than Debian's (a pyenv one, say) may lack it
+        raise ImportError(f"fnet.store reads HDF5 files with h5py: Debian's python3 (/usr/bin/python3) with "
+                          f"python3-h5py ({e})") from e
+    return h5py
+
+
 def _open(path):
-    return h5py.File(path, "r", libver="latest", swmr=True)
+    return _h5py().File(path, "r", libver="latest", swmr=True)
 
 
 class _SwmrFile:

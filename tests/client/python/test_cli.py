@@ -1,10 +1,17 @@
 """`python3 -m fnet plot ...` as users run it, against a real fnet-server (the LAMMPS frames of
-tests/data) and a real fnet-simd run file: each kind writes its image; bad options exit 2 naming
-the option, before any work; an unreachable server exits 3, an unknown run 4."""
+tests/data) and a real fnet-simd run file: each kind writes its image, a PNG with where it came
+from in its text chunks; the figure options do what they say; bad options exit 2 naming the
+option, before any work; an unreachable server exits 3, an unknown run or frame 4, an input file
+that is not what it should be 1, each with one line on stderr."""
+
+import struct
+import zlib
 
 import pytest
 
+import fnet
 from conftest import expect_png, plot, simd_run_file
+from fnet import cli, provenance
 
 DOMAIN = 95
 RUN = "lammps"
@@ -60,6 +67,11 @@ def test_network_and_its_change(run_file, tmp_path):
     (("ratio", "--ratio", "wasserstein3"), "--ratio"),
     (("ensemble", "--metric", "bottleneck"), "--ensemble"),
     (("network", "--run-file", "/nonexistent.h5", "--frame", "0"), "--run-file"),
+    (("distances", "--metric", "bottleneck", "--size", "6"), "--size"),
+    (("distances", "--metric", "bottleneck", "--size", "6,0"), "--size"),
+    (("distances", "--metric", "bottleneck", "--dpi", "0"), "--dpi"),
+    (("distances", "--metric", "bottleneck", "--log", "--linear"), "--linear"),
+    (("diagram", "--frame", "1", "--log"), "--log"),
 ])
 def test_bad_options_exit_2_naming_the_option(tmp_path, args, option):
     out = tmp_path / "never.png"
@@ -75,17 +87,125 @@ def test_unknown_image_format_exits_2(server, tmp_path):
     assert r.returncode == 2 and "--out" in r.stderr and "docx" in r.stderr
 
 
+def one_line(r):
+    """The command failed with one line on stderr (no traceback)."""
+    assert len(r.stderr.strip().splitlines()) == 1 and "Traceback" not in r.stderr, r.stderr
+    return r.stderr
+
+
 def test_unreachable_server_exits_3(tmp_path):
     r = plot("distances", "--metric", "bottleneck", "--out", tmp_path / "x.png", "--port", 1)
-    assert r.returncode == 3 and "127.0.0.1:1" in r.stderr and "--port" in r.stderr
+    assert r.returncode == 3 and "127.0.0.1:1" in one_line(r) and "--port" in r.stderr
 
 
-def test_unknown_run_and_frame_exit_4(server, tmp_path):
+def test_unknown_run_and_frame_exit_4(server, run_file, tmp_path):
     r = plot("distances", "--metric", "bottleneck", "--run", "nope", "--out", tmp_path / "x.png", "--port", server.port)
-    assert r.returncode == 4 and "nope" in r.stderr
+    assert r.returncode == 4 and "nope" in one_line(r)
+    r = plot("diagram", "--run", "lammsp", "--frame", 1, "--out", tmp_path / "x.png", "--port", server.port)
+    assert r.returncode == 4 and "'lammsp'" in one_line(r) and f"close name: {RUN})" in r.stderr
     r = plot("diagram", "--run", RUN, "--frame", 99, "--out", tmp_path / "x.png", "--port", server.port)
-    assert r.returncode == 4 and "99" in r.stderr
+    assert r.returncode == 4 and "99" in one_line(r)
+    r = plot("network", "--run-file", run_file, "--frame", 7, "--out", tmp_path / "x.png")
+    assert r.returncode == 4 and "frame 7" in one_line(r) and "'" not in r.stderr.split(":", 1)[1][:3]
+    r = plot("diagram", "--store", server.store_path(RUN), "--frame", 99, "--out", tmp_path / "x.png")
+    assert r.returncode == 4 and "frame 99" in one_line(r)
     assert not (tmp_path / "x.png").exists()
+
+
+def test_input_that_is_not_what_it_should_be_exits_1(server, tmp_path):
+    text = tmp_path / "not-hdf5.h5"
+    text.write_text("not an HDF5 file\n")
+    r = plot("network", "--run-file", text, "--frame", 0, "--out", tmp_path / "x.png")
+    assert r.returncode == 1 and str(text) in one_line(r)
+    r = plot("network", "--run-file", server.store_path(RUN), "--frame", 0, "--out", tmp_path / "x.png")
+    assert r.returncode == 1 and "schema" in one_line(r)  # a store is not a run file
+    r = plot("distances", "--metric", "bottleneck", "--out", tmp_path / "missing" / "x.png", "--port", server.port)
+    assert r.returncode == 1 and "--out" in one_line(r)  # output it cannot write
+    assert not (tmp_path / "x.png").exists()
+
+
+def png_text(path):
+    """The text chunks (tEXt, iTXt) of a PNG file as a dict, read chunk by chunk."""
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    out, at = {}, 8
+    while at < len(data):
+        (length,), kind = struct.unpack(">I", data[at:at + 4]), data[at + 4:at + 8]
+        body = data[at + 8:at + 8 + length]
+        assert zlib.crc32(kind + body) == struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0]
+        if kind == b"tEXt":
+            key, value = body.split(b"\0", 1)
+            out[key.decode("latin-1")] = value.decode("latin-1")
+        elif kind == b"iTXt":
+            key, rest = body.split(b"\0", 1)
+            compressed, rest = rest[0], rest[2:]
+            _, _, value = rest.split(b"\0", 2)
+            out[key.decode("latin-1")] = (zlib.decompress(value) if compressed else value).decode()
+        at += 12 + length
+    return out
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        header = f.read(24)
+    return struct.unpack(">II", header[16:24])
+
+
+def test_png_carries_its_provenance(server, run_file, tmp_path):
+    out = tmp_path / "distances.png"
+    args = ("distances", "--metric", "wasserstein", "--q", "3", "--dim", "1", "--essential", "sentinel", "--out", out)
+    expect_png(plot(*args, port=server.port), out)  # the newest run
+    meta = png_text(out)
+    with fnet.Client("127.0.0.1", server.port) as c:
+        expected = provenance.describe(server_status=c.status(), convention="sentinel")
+    for key in ("fnet_version", "fnet_commit", "method", "server_version", "server_commit", "convention"):
+        assert meta[f"fnet:{key}"] == expected[key], key
+    assert meta["fnet:run"] == RUN and meta["fnet:metric"] == "wasserstein" and meta["fnet:q"] == "3.0"
+    assert meta["fnet:dim"] == "1" and meta["fnet:figure"] == "distances"
+    assert meta["fnet:command"].startswith("python3 -m fnet plot distances --metric wasserstein")
+    assert meta["Software"].startswith(f"fnet {expected['fnet_version']}") and meta["Source"] == provenance.SOURCE
+    out = tmp_path / "network.png"
+    expect_png(plot("network", "--run-file", run_file, "--frame", 2, "--out", out), out)
+    meta = png_text(out)
+    assert meta["fnet:source"] == str(run_file) and meta["fnet:run"] == "net" and meta["fnet:frame"] == "2"
+    assert "fnet:server_version" not in meta  # no server was asked
+
+
+def test_figure_options(server, tmp_path):
+    out = tmp_path / "sized.png"
+    expect_png(plot("ratio", "--run", RUN, "--size", "5,3", "--dpi", "80", "--log", "--title", "Fig. 7", "--out", out,
+                    "--port", server.port), out)
+    assert png_size(out) == (400, 240)
+    assert png_text(out)["fnet:y_scale"] == "log"
+    parser = cli.build_parser()
+    for argv, scale, title in ((["--log", "--title", "Fig. 7"], "log", "Fig. 7"), ([], "linear", ""),
+                               (["--linear", "--title", ""], "linear", "")):
+        args = parser.parse_args(["plot", "distances", "--run", RUN, "--metric", "bottleneck", "--out", "x.png",
+                                  "--port", str(server.port), *argv])
+        fig = cli.figure(args)
+        assert fig.axes[0].get_yscale() == scale and fig.axes[0].get_title() == title
+    args = parser.parse_args(["plot", "diagram", "--run", RUN, "--frame", "3", "--out", "x.png", "--port",
+                              str(server.port), "--size", "7.5,4"])
+    fig = cli.figure(args)
+    assert fig._suptitle.get_text() == f"{RUN} frame 3, normal forces" and tuple(fig.get_size_inches()) == (7.5, 4)
+    args = parser.parse_args(["plot", "diagram", "--run", RUN, "--frame", "3", "--out", "x.png", "--port",
+                              str(server.port), "--title", "Fig. 3"])
+    assert cli.figure(args)._suptitle.get_text() == "Fig. 3"
+
+
+def test_blocks_over_the_stored_packing(server, tmp_path):
+    out = tmp_path / "blocks.png"
+    expect_png(plot("blocks", "--run", RUN, "--frame", 9, "--other-frame", 10, "--k", 3, "--store",
+                    server.store_path(RUN), "--port", server.port, "--out", out), out)
+    args = cli.build_parser().parse_args(["plot", "blocks", "--run", RUN, "--frame", "9", "--other-frame", "10",
+                                          "--store", str(server.store_path(RUN)), "--out", "x.png", "--port",
+                                          str(server.port)])
+    fig = cli.figure(args)
+    assert [a for a in fig.axes[0].get_children() if a.get_gid() == "cells"]
+    with fnet.Client("127.0.0.1", server.port) as c:
+        whole = c.distance(9, 10, "bottleneck", run=RUN).value
+    assert f"whole frame: {cli.figures.block_text(whole)}" in fig._supxlabel.get_text()
 
 
 def test_help_lists_every_kind():

@@ -3,12 +3,14 @@ by fnet-analyze): every array it returns is what the server answered (raw JSON t
 what the server stored (its HDF5 store, read with fnet.store)."""
 
 import math
+import threading
+import time
 
 import numpy as np
 import pytest
 
 import fnet
-from conftest import LAMMPS_FRAMES, wait_for
+from conftest import LAMMPS_FRAMES, publish_lammps, wait_for
 
 DOMAIN = 90
 RUN = "lammps"
@@ -143,3 +145,33 @@ def test_subscription_of_every_run_sends_every_frame_in_order(client):
         frames = [next(sub).frame for _ in range(LAMMPS_FRAMES)]
         assert sub.next(timeout=0.5) is None  # nothing more until a new frame
     assert frames == list(range(LAMMPS_FRAMES)) and sub.unsubscribed == sub.id
+
+
+def test_subscribe_waits_for_a_run_not_yet_announced(client, processes):
+    assert "late" not in [r["run"] for r in client.runs()]
+    starter = threading.Timer(2.0, lambda: publish_lammps(processes, "late", DOMAIN))
+    starter.start()
+    try:
+        began = time.monotonic()
+        with client.subscribe(run="late", wait=240) as sub:
+            waited = time.monotonic() - began
+            points = [next(sub) for _ in range(3)]
+    finally:
+        starter.join()
+    assert waited >= 2.0  # it was not there when asked: the subscription waited for it
+    assert [p.frame for p in points] == [0, 1, 2] and all(p.run == "late" for p in points)
+    stored = client.series("bottleneck", run="late", dim=1)
+    assert [p.rho for p in points] == list(stored.rho[:3])
+
+
+def test_unknown_run_of_a_subscription_names_the_close_runs(client):
+    with pytest.raises(fnet.RpcError) as e:
+        client.subscribe(run="lamps")
+    assert e.value.code == -32001 and e.value.data == {"run": "lamps", "close": [RUN]}
+    assert e.value.message == "unknown run 'lamps' (runs with a close name: lammps)"
+    began = time.monotonic()
+    with pytest.raises(fnet.RpcError) as e:
+        client.subscribe(run="zzz", wait=1.5)
+    assert 1.5 <= time.monotonic() - began < 30
+    assert e.value.code == -32001 and e.value.data == {"run": "zzz"}  # nothing close: the server's error
+    assert client.status()["subscriptions"] == 0

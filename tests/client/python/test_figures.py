@@ -2,6 +2,7 @@
 real fnet-simd run wrote: each figure is rendered to PNG, and the data of its artists is the data
 it was given, point for point."""
 
+import collections
 import json
 import subprocess
 
@@ -21,6 +22,10 @@ def run_file(processes):
     return simd_run_file(processes, DOMAIN, frames=4)
 
 
+def caption(fig):
+    return fig._supxlabel.get_text()
+
+
 def render(fig, path):
     fig.savefig(path)
     with open(path, "rb") as f:
@@ -35,9 +40,9 @@ def artists(fig, gid):
 
 def test_network_draws_every_contact_of_the_force_network(run_file, tmp_path):
     with fnet.store.open_run_file(run_file) as f:
-        frame = f.frame(3)
+        frame, walls = f.frame(3), figures.run_walls(f)
     for force in ("normal", "tangential"):
-        fig = figures.network(frame, force=force)
+        fig = figures.network(frame, force=force, walls=walls)
         render(fig, tmp_path / f"network-{force}.png")
         (lines,) = artists(fig, "contacts")
         forces = np.abs(frame.contact_forces[:, 0 if force == "normal" else 1])
@@ -47,9 +52,65 @@ def test_network_draws_every_contact_of_the_force_network(run_file, tmp_path):
         segments = np.array(lines.get_segments())
         np.testing.assert_array_equal(segments[:, 0], xy[pairs[:, 0]])
         np.testing.assert_array_equal(segments[:, 1], xy[pairs[:, 1]])
-        np.testing.assert_allclose(lines.get_array(), forces[keep] / forces[keep].mean(), rtol=1e-15)
+        values = forces[keep] / forces[keep].mean()
+        np.testing.assert_allclose(lines.get_array(), values, rtol=1e-15)
         (grains,) = artists(fig, "grains")
         assert len(grains.get_paths()) == len(frame.particles)
+        # The colour scale ends at the 99th percentile, below the strongest contact, whose value the
+        # colour bar's label states; lengths are in d.
+        assert lines.norm.vmin == 0 and lines.norm.vmax == np.percentile(values, 99) < values.max()
+        assert f"max {values.max():.3g}" in fig.axes[1].get_ylabel()
+        assert fig.axes[0].get_xlabel() == "$x / d$" and fig.axes[0].get_ylabel() == "$y / d$"
+
+
+def grain_wall_overlaps(frame, disks):
+    """How far each grain overlaps its nearest wall disk (> 0: they touch)."""
+    p = frame.particles
+    gap = np.hypot(p[:, None, 0] - disks[None, :, 0], p[:, None, 1] - disks[None, :, 1]) - p[:, None, 2] - disks[:, 2]
+    return -gap.min(axis=1)
+
+
+def test_walls_are_where_the_run_recorded_its_grains_touching_them(run_file, tmp_path):
+    # The wall disks are placed from the run's box and each frame's rho alone; fnet-simd recorded
+    # which grains touch a wall: exactly those overlap a drawn wall disk.
+    with fnet.store.open_run_file(run_file) as f:
+        walls = figures.run_walls(f)
+        assert walls == {"box": f.config["box"], "wall_diameter": f.config.get("wall_diameter", 1.0)}
+        touching = 0
+        for index in f.frames:
+            frame = f.frame(index)
+            disks = figures.wall_disks(frame, walls)
+            overlap = grain_wall_overlaps(frame, disks)
+            recorded = set(frame.wall_contact_particles.tolist())
+            # (1e-3 d: the contacts were found at the integrator's predicted positions, the frame
+            # records the corrected ones)
+            assert set(np.flatnonzero(overlap > 1e-3).tolist()) <= recorded <= set(
+                np.flatnonzero(overlap > -1e-3).tolist()), f"frame {index}"
+            touching += len(recorded)
+            lo, hi = figures.free_interior(frame, walls)
+            np.testing.assert_allclose((hi - lo) ** 2 * frame.rho, np.pi * np.sum(frame.particles[:, 2] ** 2),
+                                       rtol=1e-12)
+        assert touching > 0  # the walls were touched: the check above had something to check
+    fig = figures.network(frame, walls=walls)
+    render(fig, tmp_path / "walls.png")
+    (drawn,) = artists(fig, "walls")
+    np.testing.assert_allclose([p.get_extents().bounds for p in drawn.get_paths()],
+                               np.column_stack([disks[:, :2] - disks[:, 2:], 2 * disks[:, 2:], 2 * disks[:, 2:]]),
+                               atol=1e-9)
+    assert "the walls" in caption(fig)
+    with pytest.raises(ValueError, match="box"):
+        figures.wall_disks(frame, {"box": 1.0, "wall_diameter": 1.0})
+
+
+def test_without_walls_the_grains_bounding_box_is_drawn_and_said(run_file, tmp_path):
+    with fnet.store.open_run_file(run_file) as f:
+        frame = f.frame(3)
+    fig = figures.network(frame)
+    render(fig, tmp_path / "no-walls.png")
+    (box,) = artists(fig, "walls")
+    p = frame.particles
+    np.testing.assert_allclose(box.get_xy(), (p[:, :2] - p[:, 2:]).min(axis=0))
+    assert "bounding box" in caption(fig)
 
 
 def test_network_is_the_force_network_fnet_analyzes(run_file, tmp_path):
@@ -85,18 +146,59 @@ def test_network_is_the_force_network_fnet_analyzes(run_file, tmp_path):
 
 def test_network_change_is_after_minus_before(run_file, tmp_path):
     with fnet.store.open_run_file(run_file) as f:
-        a, b = f.frame(2), f.frame(3)
-    fig = figures.network_change(a, b)
+        a, b, walls = f.frame(2), f.frame(3), figures.run_walls(f)
+    fig = figures.network_change(a, b, walls=walls)
     render(fig, tmp_path / "change.png")
-    (lines,) = artists(fig, "contacts")
     before = dict(zip(map(tuple, figures.normalized_network(a)[0].tolist()), figures.normalized_network(a)[1]))
     after = dict(zip(map(tuple, figures.normalized_network(b)[0].tolist()), figures.normalized_network(b)[1]))
     keys = sorted(set(before) | set(after))
-    np.testing.assert_array_equal(lines.get_array(), [after.get(k, 0.0) - before.get(k, 0.0) for k in keys])
+    pairs, change = figures.contact_change(a, b)
+    np.testing.assert_array_equal(pairs, keys)
+    np.testing.assert_array_equal(change, [after.get(k, 0.0) - before.get(k, 0.0) for k in keys])
+    # Contacts in both frames are coloured by their change; created and broken ones are drawn apart.
     xy = b.particles[:, :2]
-    np.testing.assert_array_equal(np.array(lines.get_segments())[:, 0], xy[[k[0] for k in keys]])
+    kinds = {"contacts": [k for k in keys if k in before and k in after],
+             "created": [k for k in keys if k not in before], "broken": [k for k in keys if k not in after]}
+    assert kinds["created"] and kinds["broken"] and kinds["contacts"]
+    for gid, which in kinds.items():
+        (lines,) = artists(fig, gid)
+        segments = np.array(lines.get_segments())
+        np.testing.assert_array_equal(segments[:, 0], xy[[k[0] for k in which]])
+        np.testing.assert_array_equal(segments[:, 1], xy[[k[1] for k in which]])
+    (kept,) = artists(fig, "contacts")
+    np.testing.assert_array_equal(kept.get_array(), [after[k] - before[k] for k in kinds["contacts"]])
+    (created,) = artists(fig, "created")
+    (broken,) = artists(fig, "broken")
+    assert created.get_linestyle()[0][1] is None and broken.get_linestyle()[0][1] is not None  # solid, dashed
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend[:2] == [f"created ({len(kinds['created'])})", f"broken ({len(kinds['broken'])})"]
     unchanged = figures.network_change(b, b)
     assert not np.any(artists(unchanged, "contacts")[0].get_array())
+    assert not len(artists(unchanged, "created")[0].get_segments()) and not len(artists(unchanged, "broken")[0]
+                                                                                 .get_segments())
+
+
+def panel(fig, k):
+    """(the diagram axes, the never-dies strip) of PDk."""
+    (ax,) = [a for a in fig.axes if a.get_label() == f"PD{k}"]
+    (strip,) = [a for a in fig.axes if a.get_label() == f"PD{k} never dies"]
+    return ax, strip
+
+
+def gid_in(ax, gid):
+    return [a for a in ax.get_children() if a.get_gid() == gid]
+
+
+def expect_counted(ax, gid, points):
+    """The `gid` scatter of `ax` draws each distinct point of `points` once, its marker area by its
+    count, and writes every count above 1 beside its point."""
+    counts = collections.Counter(map(tuple, np.asarray(points).tolist()))
+    distinct = sorted(counts)
+    (scatter,) = gid_in(ax, gid)
+    np.testing.assert_array_equal(scatter.get_offsets(), np.array(distinct).reshape(-1, 2))
+    np.testing.assert_array_equal(scatter.get_sizes(), figures.marker_area([counts[p] for p in distinct]))
+    labels = sorted((a.xy, a.get_text()) for a in gid_in(ax, "count"))
+    assert labels == sorted((p, f"×{n}") for p, n in counts.items() if n > 1)
 
 
 def test_diagrams_draw_the_served_points_and_never_dying_ones_apart(client, tmp_path):
@@ -104,17 +206,35 @@ def test_diagrams_draw_the_served_points_and_never_dying_ones_apart(client, tmp_
         pd0, pd1 = client.diagram(frame, run=RUN, dim=0), client.diagram(frame, run=RUN, dim=1)
         fig = figures.diagrams(pd0, pd1, title=f"frame {frame}")
         render(fig, tmp_path / f"diagram-{frame}.png")
-        for ax, points in zip(fig.axes, (pd0, pd1)):
-            (finite,) = [a for a in ax.get_children() if a.get_gid() == "finite"]
-            (forever,) = [a for a in ax.get_children() if a.get_gid() == "never_dies"]
+        for k, points in enumerate((pd0, pd1)):
+            ax, strip = panel(fig, k)
             essential = points[:, 1] == -1
             assert len(points) and essential.any()  # every diagram here has both kinds of point
-            assert ax is fig.axes[1] or not essential.all()  # PD0 has finite points too
-            np.testing.assert_array_equal(finite.get_offsets(), points[~essential])
-            level = figures.never_dies_level(points)
-            np.testing.assert_array_equal(forever.get_offsets(),
-                                          np.column_stack([points[essential, 0], np.full(essential.sum(), level)]))
-            assert level < points[~essential, 1].min(initial=0.0)
+            assert k == 1 or not essential.all()  # PD0 has finite points too
+            expect_counted(ax, "finite", points[~essential])
+            expect_counted(strip, "never_dies", np.column_stack([points[essential, 0], np.zeros(essential.sum())]))
+            assert not gid_in(ax, "never_dies") and ax.get_ylim()[0] > -0.05 * ax.get_ylim()[1]
+            (diagonal,) = gid_in(ax, "diagonal")
+            assert np.all(diagonal.get_xdata() == diagonal.get_ydata())
+            legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+            assert f"finite: {(~essential).sum()} " in legend and f"(death −1): {essential.sum()} " in legend
+            assert ax.get_xlabel().startswith("birth") and ax.get_ylabel().startswith("death")
+
+
+def test_diagrams_count_coinciding_points(tmp_path):
+    # Thirty rattlers born at 0 that never die are one marker that says 30, not an anonymous one.
+    pd0 = np.array([[0.0, -1.0]] * 30 + [[2.5, -1.0]] + [[1.0, 0.5]] * 3 + [[2.0, 1.0]])
+    pd1 = np.zeros((0, 2))
+    fig = figures.diagrams(pd0, pd1)
+    render(fig, tmp_path / "counted.png")
+    ax, strip = panel(fig, 0)
+    expect_counted(strip, "never_dies", [[0.0, 0.0]] * 30 + [[2.5, 0.0]])
+    expect_counted(ax, "finite", [[1.0, 0.5]] * 3 + [[2.0, 1.0]])
+    assert [a.get_text() for a in gid_in(strip, "count")] == ["×30"]
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert legend[:2] == ["finite: 4 (2 distinct)", "never die (death −1): 31 (2 distinct)"]
+    ax1, strip1 = panel(fig, 1)  # an empty diagram draws empty panels
+    assert not len(gid_in(ax1, "finite")[0].get_offsets()) and not len(gid_in(strip1, "never_dies")[0].get_offsets())
 
 
 def test_distances_against_rho_with_z_on_a_second_axis(client, tmp_path):
@@ -149,3 +269,38 @@ def test_store_series_plot_like_served_ones(server, client, tmp_path):
     s = client.series("wasserstein1", run=RUN, dim=0, force="tangential")
     (line,) = artists(fig, "distance")
     np.testing.assert_array_equal(line.get_xydata(), np.column_stack([s.rho[1:], s.value[1:]]))
+
+
+def test_blocks_over_the_packing_state_each_cells_normalization(client, server, tmp_path):
+    b = client.blocks(9, 10, run=RUN, k=2, metric="bottleneck", dim=0)
+    whole = client.distance(9, 10, "bottleneck", run=RUN, dim=0).value
+    with fnet.store.open_store(server.store_path(RUN)) as st:
+        network, other = st.network(9), st.network(10)
+    for frame, which in ((network, 0), (other, 1)):
+        fig = figures.blocks(b, network=frame, whole=whole)
+        render(fig, tmp_path / f"blocks-over-{frame.index}.png")
+        (cells,) = artists(fig, "cells")
+        np.testing.assert_array_equal(cells.get_array(), b.value.reshape(-1))
+        for path, bounds in zip(cells.get_paths(), b.bounds[:, :, which].reshape(-1, 4)):
+            np.testing.assert_allclose(path.get_extents().bounds, (bounds[0], bounds[2], bounds[1] - bounds[0],
+                                                                   bounds[3] - bounds[2]), rtol=1e-12)
+        ax = fig.axes[0]
+        for r in range(2):
+            for c in range(2):
+                (text,) = [a for a in ax.texts if a.get_gid() == f"block_{r}_{c}"]
+                x_lo, x_hi, y_lo, y_hi = b.bounds[r, c, which]
+                assert text.get_position() == (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
+                assert text.get_text() == figures.block_text(float(b.value[r, c]))
+        (contacts,) = artists(fig, "contacts")
+        assert len(contacts.get_segments()) == len(figures.normalized_network(frame)[0])
+        note = caption(fig)
+        assert "normalized by its own mean force" in note and figures.block_text(whole) in note
+    # A cell normalized by its own mean can change more than the whole frame: the note is needed.
+    assert np.nanmax(b.value) > whole
+    with pytest.raises(ValueError, match="frame 3"):
+        figures.blocks(b, network=st_frame_3(server))
+
+
+def st_frame_3(server):
+    with fnet.store.open_store(server.store_path(RUN)) as st:
+        return st.network(3)

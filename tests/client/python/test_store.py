@@ -4,6 +4,9 @@ same run's CSV export, the daemon's other output), the first schema's run file k
 serves, and the run file's contacts)."""
 
 import csv
+import os
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -142,3 +145,24 @@ def test_bad_arguments_name_what_was_wrong(simd_run):
         fnet.store.open_store(out)  # a run file is not a store
     with pytest.raises(ValueError, match="schema"):
         fnet.store.open_run_file(server.store_path(RUN))
+
+
+def test_fnet_imports_without_h5py_and_the_store_readers_say_what_they_need(simd_run):
+    # h5py blocked: the RPC client works; opening a file names h5py and the package that brings it.
+    server, out, _ = simd_run
+    script = (
+        "import sys\n"
+        "sys.modules['h5py'] = None\n"
+        "import fnet\n"
+        f"with fnet.Client('127.0.0.1', {server.port}) as c:\n"
+        "    print(c.runs()[0]['run'])\n"
+        "try:\n"
+        f"    fnet.store.open_run_file({str(out)!r})\n"
+        "except ImportError as e:\n"
+        "    print(e)\n")
+    env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 0, r.stderr
+    run, error = r.stdout.splitlines()
+    assert run == RUN
+    assert "h5py" in error and "python3-h5py" in error
