@@ -122,6 +122,10 @@ def _out(parser, y_scale=False):
 
 def build_parser():
     parser = argparse.ArgumentParser(prog="python3 -m fnet", description=__doc__.split("\n\n")[0])
+    from fnet import provenance
+    parser.add_argument("--version", action="version",
+                        version=f"fnet {provenance.__version__} (commit {provenance.package_commit()})",
+                        help="print the version and the commit of the checkout, then exit")
     commands = parser.add_subparsers(dest="command", required=True, metavar="plot|paper-report")
     plot = commands.add_parser("plot", help="draw one of the paper's figures")
     kinds = plot.add_subparsers(dest="kind", required=True, metavar="KIND")
@@ -332,10 +336,7 @@ def _draw(args, record):
         return figures.diagrams(*d, title=args.title if args.title is not None else title)
     try:
         with Client(args.host, args.port) as c:
-            try:
-                return _draw_served(args, c, record)
-            except RpcError as e:
-                raise c.explain_unknown_run(e) from None
+            return _draw_served(args, c, record)
     except OSError as e:
         # Before the server answered, any OSError is the connection's; after, a file's (h5py's) unless
         # it is a socket's.

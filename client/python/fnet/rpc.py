@@ -5,7 +5,6 @@ numpy arrays: a missing distance (`null`) is NaN, an infinite one (`infinite[k]`
 """
 
 import collections
-import difflib
 import json
 import math
 import os
@@ -19,11 +18,6 @@ from fnet.arrays import Result, float_array, index_array
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 7707
 UNKNOWN_RUN = -32001  # proto/api.md's error code of an unknown run
-
-
-def close_run_names(run, names):
-    """Up to three of `names` close to `run` (difflib's ratio >= 0.6), closest first."""
-    return difflib.get_close_matches(run, names, n=3, cutoff=0.6)
 
 
 class RpcError(Exception):
@@ -338,7 +332,7 @@ class Client:
         A named `run` that the server does not know yet (fnet-simd may still be relaxing) is waited
         for up to `wait` seconds (math.inf: as long as it takes), asking every half second, as
         `fnetctl watch --run` does; without `wait`, or once it is over, an unknown run raises the
-        server's RpcError -32001, its message naming the runs with a close name (data "close")."""
+        server's RpcError -32001, whose message and data ("close") name the runs with a close name."""
         deadline = None if wait is None else time.monotonic() + wait
         while run is not None and deadline is not None:
             try:
@@ -346,26 +340,10 @@ class Client:
                 break
             except RpcError as e:
                 if e.code != UNKNOWN_RUN or time.monotonic() >= deadline:
-                    raise self.explain_unknown_run(e) from None
+                    raise
                 time.sleep(max(min(0.5, deadline - time.monotonic()), 0.0))
-        try:
-            return Subscription(self.host, self.port, self.timeout, "series.subscribe", _params(run=run, since=since),
-                                "series.point", "series.unsubscribe", Result)
-        except RpcError as e:
-            raise self.explain_unknown_run(e) from None
-
-    def explain_unknown_run(self, error):
-        """`error` with the server's runs whose names are close to the unknown one (difflib's) in its
-        message and in its data as "close", when it is an unknown run; else `error` itself."""
-        data = error.data if isinstance(error.data, dict) else {}
-        run = data.get("run")
-        if error.code != UNKNOWN_RUN or not isinstance(run, str) or "close" in data:
-            return error  # not an unknown run, or the server named the close runs itself
-        close = close_run_names(run, [r["run"] for r in self.runs()])
-        if not close:
-            return error
-        return RpcError(error.code, f"{error.message} (runs with a close name: {', '.join(close)})",
-                        dict(data, close=close))
+        return Subscription(self.host, self.port, self.timeout, "series.subscribe", _params(run=run, since=since),
+                            "series.point", "series.unsubscribe", Result)
 
     def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=0, force="normal", q=None,
                            essential="floor", bin_width=None, bins=None, axis=None, ratio=None):

@@ -102,7 +102,7 @@ def test_unknown_run_and_frame_exit_4(server, run_file, tmp_path):
     r = plot("distances", "--metric", "bottleneck", "--run", "nope", "--out", tmp_path / "x.png", "--port", server.port)
     assert r.returncode == 4 and "nope" in one_line(r)
     r = plot("diagram", "--run", "lammsp", "--frame", 1, "--out", tmp_path / "x.png", "--port", server.port)
-    assert r.returncode == 4 and "'lammsp'" in one_line(r) and f"close name: {RUN})" in r.stderr
+    assert r.returncode == 4 and "'lammsp'" in one_line(r) and f"close: {RUN}" in r.stderr
     r = plot("diagram", "--run", RUN, "--frame", 99, "--out", tmp_path / "x.png", "--port", server.port)
     assert r.returncode == 4 and "99" in one_line(r)
     r = plot("network", "--run-file", run_file, "--frame", 7, "--out", tmp_path / "x.png")

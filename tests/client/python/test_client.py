@@ -96,7 +96,7 @@ def test_distance_between_consecutive_frames_is_the_series_value(client):
 def test_server_errors_are_rpc_errors(client):
     with pytest.raises(fnet.RpcError) as e:
         client.series("bottleneck", run="nope")
-    assert e.value.code == -32001 and e.value.data == {"run": "nope"}
+    assert e.value.code == -32001 and e.value.data == {"run": "nope", "close": []}
     with pytest.raises(fnet.RpcError) as e:
         client.series("bottleneck", run=RUN, dim=2)
     assert e.value.code == -32602 and e.value.data["parameter"] == "dim"
@@ -168,10 +168,10 @@ def test_unknown_run_of_a_subscription_names_the_close_runs(client):
     with pytest.raises(fnet.RpcError) as e:
         client.subscribe(run="lamps")
     assert e.value.code == -32001 and e.value.data == {"run": "lamps", "close": [RUN]}
-    assert e.value.message == "unknown run 'lamps' (runs with a close name: lammps)"
+    assert e.value.message == "unknown run 'lamps'; close: lammps"
     began = time.monotonic()
     with pytest.raises(fnet.RpcError) as e:
         client.subscribe(run="zzz", wait=1.5)
     assert 1.5 <= time.monotonic() - began < 30
-    assert e.value.code == -32001 and e.value.data == {"run": "zzz"}  # nothing close: the server's error
+    assert e.value.code == -32001 and e.value.data == {"run": "zzz", "close": []}  # nothing close: the server's error
     assert client.status()["subscriptions"] == 0
