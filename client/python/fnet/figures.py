@@ -254,12 +254,14 @@ def _z_line(ax, c, label):
 
 
 def _legend(ax, twin):
-    """One legend holding the entries of both axes (the curves, rho_J, Z), drawn on the top axes."""
+    """One legend holding the entries of both axes (the curves, rho_J, Z), below the axes so that it
+    hides no data."""
     handles, labels = ax.get_legend_handles_labels()
     if twin is not None:
         h, l = twin.get_legend_handles_labels()
         handles, labels = handles + h, labels + l
-    (twin or ax).legend(handles, labels, fontsize="small")
+    (twin or ax).legend(handles, labels, fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.13),
+                        ncol=min(len(labels), 3) or 1, frameon=False)
 
 
 def distances(series, labels=None, z=True, log=False, rho_j=None, title=None):
