@@ -202,6 +202,9 @@ def build_parser():
     p.add_argument("--out", required=True, help="the report folder")
     p.add_argument("--setting", action="append", default=[], metavar="KEY=VALUE",
                    help="a line of the report's Setting section (repeatable)")
+    p.add_argument("--compare-start", action="append", default=[], metavar="A=B", type=_ensemble_pair,
+                   help="compare two ensembles of the same system from different starts before jamming: "
+                        "median PD1 d_B and the share of empty PD1s, with bootstrap intervals (repeatable)")
     parser.report_parser = p
     return parser
 
@@ -215,6 +218,13 @@ def _mu_ensemble(text):
     if not sep or not name:
         raise argparse.ArgumentTypeError(f"expected MU=NAME, got {text!r}")
     return mu, name
+
+
+def _ensemble_pair(text):
+    a, sep, b = text.partition("=")
+    if not sep or not a or not b:
+        raise argparse.ArgumentTypeError(f"expected ENSEMBLE_A=ENSEMBLE_B, got {text!r}")
+    return a, b
 
 
 def _check(parser, args):
@@ -403,15 +413,24 @@ def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command == "paper-report":
-        from fnet import paper
         try:
+            from fnet import paper
             return paper.main(args)
         except RpcError as e:
             print(f"python3 -m fnet paper-report: {e.message}", file=sys.stderr)
             return EXIT_UNKNOWN if e.code in UNKNOWN_CODES else EXIT_SERVER
-        except (ConnectionError, OSError) as e:
+        except (ConnectionError, socket.timeout, socket.gaierror) as e:
             print(f"python3 -m fnet: cannot reach fnet-server at {args.host}:{args.port}: {e}", file=sys.stderr)
             return EXIT_UNREACHABLE
+        except OSError as e:
+            print(f"python3 -m fnet paper-report: {e}", file=sys.stderr)
+            return EXIT_FAILURE
+        except KeyError as e:
+            print(f"python3 -m fnet paper-report: {e.args[0] if e.args else e}", file=sys.stderr)
+            return EXIT_UNKNOWN
+        except KeyboardInterrupt:
+            print(f"python3 -m fnet paper-report: interrupted; {args.out} left as it was", file=sys.stderr)
+            return 130
     _check(parser, args)
     prefix = f"python3 -m fnet plot {args.kind}"
     record = {}

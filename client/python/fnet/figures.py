@@ -319,73 +319,211 @@ def diagrams(pd0, pd1, title=None):
     return fig
 
 
-def _finite(x, y):
+def _drawable(x, y, log):
+    """Which points can be drawn: finite x and y, and on a log axis y > 0."""
     keep = np.isfinite(x) & np.isfinite(y)
-    return x[keep], y[keep]
+    if log:
+        keep &= y > 0
+    return keep
 
 
-def distances(series, labels=None, z=True):
+def _neighbours(c, x):
+    """neighbours[i]: whether point i and point i + 1 of a curve are next to each other, so that a
+    line may join them. Binned curves: bin i's rho_hi is bin i + 1's rho_lo (else a bin of the grid
+    holds no sample: a gap); without edges, with a bin_width w: floor(x / w) differ by one; else
+    (a run's frames) every point is next to the following one."""
+    n = len(x)
+    if n < 2:
+        return np.zeros(0, dtype=bool)
+    if "rho_lo" in c and "rho_hi" in c and len(c["rho_lo"]) == n:
+        lo, hi = np.asarray(c["rho_lo"], dtype=np.float64), np.asarray(c["rho_hi"], dtype=np.float64)
+        return np.isclose(hi[:-1], lo[1:], rtol=1e-9, atol=1e-12)
+    width = c.get("bin_width")
+    if width:
+        k = np.floor(np.asarray(x, dtype=np.float64) / float(width))
+        return np.diff(k) == 1
+    return np.ones(n - 1, dtype=bool)
+
+
+def _gapped(x, y, keep, neighbours):
+    """The kept points of (x, y) in order, with a NaN row between two consecutive kept points that
+    are not neighbours (a point left out between them, or an empty bin): matplotlib breaks a line at
+    NaN, so no line spans a gap."""
+    xs, ys, prev = [], [], None
+    for i in np.flatnonzero(keep):
+        if prev is not None and not (i == prev + 1 and neighbours[prev]):
+            xs.append(math.nan)
+            ys.append(math.nan)
+        xs.append(x[i])
+        ys.append(y[i])
+        prev = i
+    return np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64)
+
+
+def _mark_nonpositive(ax, x, y, color):
+    """On a log axis: values <= 0 as open triangles on the bottom edge (the "nonpositive" line; its
+    y data are 0 in axes coordinates), never as data."""
+    at = np.isfinite(x) & np.isfinite(y) & (y <= 0)
+    if at.any():
+        ax.plot(x[at], np.zeros(at.sum()), linestyle="none", marker="v", markerfacecolor="none", color=color,
+                transform=ax.get_xaxis_transform(), clip_on=False, gid="nonpositive")
+    return int(at.sum())
+
+
+def _rho_j_marks(ax, rho_j, axis):
+    """Vertical lines at each rho_J ("rho_j", with its value ± standard error in the legend) and a
+    band of ± one standard error. rho_j: a number, a dict {"mean", "standard_error"?, "label"?} (as
+    ensembles.list has it), or a list of them; against rho - rho_J the line is at 0."""
+    if rho_j is None:
+        return
+    items = rho_j if isinstance(rho_j, (list, tuple)) else [rho_j]
+    for k, item in enumerate(items):
+        item = {"mean": item} if not isinstance(item, dict) else item
+        mean, se = item.get("mean"), item.get("standard_error")
+        if mean is None or not math.isfinite(mean):
+            continue
+        x = 0.0 if axis == "rho_minus_rho_j" else float(mean)
+        value = f"{mean:.4f}" + (f" ± {se:.4f}" if se is not None and math.isfinite(se) else "")
+        who = f" ({item['label']})" if item.get("label") else ""
+        ax.axvline(x, color="0.25", linestyle=("--", "-.", ":")[k % 3], linewidth=1.0, gid="rho_j",
+                   label=r"$\rho_J$" + f" = {value}{who}")
+        if se is not None and math.isfinite(se) and se > 0:
+            ax.axvspan(x - se, x + se, color="0.25", alpha=0.12, linewidth=0)
+
+
+def _log_limits(ax, means, lows, highs):
+    """y limits of a log axis that hold every drawn mean and bar top, from a decade below the
+    smallest mean at most (bars reaching lower, or to <= 0, are clipped there); the bottom."""
+    bottom = float(np.min(means)) / 10.0
+    lows = lows[lows > 0]
+    if len(lows):
+        bottom = max(bottom, min(float(np.min(lows)), float(np.min(means))) / 1.25)
+    top = float(np.max(highs)) * 1.25
+    ax.set_ylim(bottom, top)
+    return bottom
+
+
+def _z_line(ax, c, label):
+    """Z against rho of curve c on a second axis ("z" line), broken at gaps like the curves."""
+    twin = ax.twinx()
+    x, z = np.asarray(c["rho"], dtype=np.float64), np.asarray(c["z"], dtype=np.float64)
+    zx, zy = _gapped(x, z, np.isfinite(x) & np.isfinite(z), _neighbours(c, x))
+    twin.plot(zx, zy, color="0.4", linestyle=":", label="Z", gid="z")
+    twin.set_ylabel(label)
+    return twin
+
+
+def _legend(ax, twin):
+    """One legend holding the entries of both axes (the curves, rho_J, Z), below the axes so that it
+    hides no data."""
+    handles, labels = ax.get_legend_handles_labels()
+    if twin is not None:
+        h, l = twin.get_legend_handles_labels()
+        handles, labels = handles + h, labels + l
+    (twin or ax).legend(handles, labels, fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.13),
+                        ncol=min(len(labels), 3) or 1, frameon=False)
+
+
+def distances(series, labels=None, z=True, log=False, rho_j=None, title=None):
     """Distances between consecutive frames against rho (each `series` as Client.series or
-    Store.series returns it, one or a list): one "distance" line per series (its finite values);
-    Z against rho on a second axis (the "z" line, of the first series)."""
+    Store.series returns it, one or a list): one "distance" line per series through its drawable
+    values (finite; > 0 on a log axis, `log`), broken (a NaN row) where a value between was left
+    out; values <= 0 on a log axis are marked on its bottom edge ("nonpositive"). Z against rho on
+    a second axis (the "z" line, of the first series); rho_j: vertical lines (see ensemble)."""
     series = [series] if isinstance(series, dict) else list(series)
     fig = _figure()
     ax = fig.add_subplot()
+    if log:
+        ax.set_yscale("log")
     for k, s in enumerate(series):
-        x, y = _finite(np.asarray(s["rho"]), np.asarray(s["value"]))
+        x, y = np.asarray(s["rho"], dtype=np.float64), np.asarray(s["value"], dtype=np.float64)
+        gx, gy = _gapped(x, y, _drawable(x, y, log), _neighbours(s, x))
         label = labels[k] if labels else f"{s.get('run', '')} {_metric_label(s)}"
-        ax.plot(x, y, marker=".", color=f"C{k}", label=label, gid="distance")
+        ax.plot(gx, gy, marker=".", color=f"C{k}", label=label, gid="distance")
+        if log:
+            _mark_nonpositive(ax, x, y, f"C{k}")
+    _rho_j_marks(ax, rho_j, "rho")
     ax.set_xlabel(AXIS_LABELS["rho"])
     ax.set_ylabel("distance to the previous frame")
-    if z and series:
-        twin = ax.twinx()
-        twin.plot(series[0]["rho"], series[0]["z"], color="0.4", linestyle=":", label="Z", gid="z")
-        twin.set_ylabel("Z")
-    ax.legend(fontsize="small")
+    twin = _z_line(ax, series[0], "Z") if z and series else None
+    _legend(ax, twin)
+    if title:
+        ax.set_title(title, fontsize="medium")
     return fig
 
 
-def ensemble(curves, labels=None, z=True):
+def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None):
     """Figs. 6, 8, 9: ensemble mean ± standard error per bin of rho (each curve as
-    Client.ensemble_series returns it, one or a list). Each curve is an errorbar whose "mean" line
-    holds (rho, mean) of its bins with a finite mean and whose bars span mean ± stderr (no bar where
-    the standard error is undefined); the mean Z of the first curve's bins on a second axis ("z")."""
+    Client.ensemble_series returns it, one or a list). Per curve, the "mean" line holds (rho, mean)
+    of its drawable bins (finite mean; > 0 on a log axis, `log`) in order, with a NaN row wherever
+    the next drawn bin is not the next bin of the grid (an empty bin, or one left out), so no line
+    spans a gap; its error bars (the curve's ErrorbarContainer in ax.containers) span mean ±
+    stderr, none where the standard error is undefined, and on a log axis their lower ends are
+    clipped at the axis' bottom (never <= 0). Bins with a mean <= 0 on a log axis are marked on
+    its bottom edge ("nonpositive"). The mean Z of the first curve's bins on a second axis ("z",
+    in the legend). rho_j: the jamming point(s) as vertical lines ("rho_j") whose legend entries
+    give the value ± standard error (_rho_j_marks)."""
     curves = [curves] if isinstance(curves, dict) else list(curves)
     fig = _figure()
     ax = fig.add_subplot()
+    axis = curves[0].get("axis", "rho") if curves else "rho"
+    if log:
+        ax.set_yscale("log")
+    drawn = []
     for k, c in enumerate(curves):
         rho, mean, stderr = (np.asarray(c[key], dtype=np.float64) for key in ("rho", "mean", "stderr"))
-        keep = np.isfinite(rho) & np.isfinite(mean)
+        keep = _drawable(rho, mean, log)
+        se = np.where(np.isfinite(stderr), stderr, 0.0)
+        drawn.append((rho[keep], mean[keep], se[keep]))
         label = labels[k] if labels else f"{c.get('ensemble') or c.get('run')} {_metric_label(c)}"
-        bars = ax.errorbar(rho[keep], mean[keep], yerr=np.nan_to_num(stderr[keep], nan=0.0), marker=".",
-                           capsize=2, color=f"C{k}", label=label)
-        bars.lines[0].set_gid("mean")
-    ax.set_xlabel(AXIS_LABELS.get(curves[0].get("axis", "rho") if curves else "rho", AXIS_LABELS["rho"]))
-    ax.set_ylabel("mean distance ± standard error")
-    if z and curves:
-        twin = ax.twinx()
-        twin.plot(curves[0]["rho"], curves[0]["z"], color="0.4", linestyle=":", label="Z", gid="z")
-        twin.set_ylabel("mean Z")
-    ax.legend(fontsize="small")
+        gx, gy = _gapped(rho, mean, keep, _neighbours(c, rho))
+        ax.plot(gx, gy, marker=".", color=f"C{k}", label=label, gid="mean")
+        if log:
+            _mark_nonpositive(ax, rho, mean, f"C{k}")
+    bottom = None
+    if log and any(len(m) for _, m, _ in drawn):
+        means = np.concatenate([m for _, m, _ in drawn])
+        bottom = _log_limits(ax, means, np.concatenate([m - s for _, m, s in drawn]),
+                             np.concatenate([m + s for _, m, s in drawn]))
+    for k, (x, m, s) in enumerate(drawn):
+        low = m - s if bottom is None else np.maximum(m - s, bottom)
+        ax.errorbar(x, m, yerr=np.vstack([m - low, s]), fmt="none", capsize=2, color=f"C{k}")
+    _rho_j_marks(ax, rho_j, axis)
+    ax.set_xlabel(AXIS_LABELS.get(axis, AXIS_LABELS["rho"]))
+    ax.set_ylabel("distance to the previous frame: mean ± s.e.")
+    twin = _z_line(ax, curves[0], "mean Z") if z and curves else None
+    _legend(ax, twin)
+    if title:
+        ax.set_title(title, fontsize="medium")
     return fig
 
 
-def ratio(curves, labels=None):
+def ratio(curves, labels=None, log=False, rho_j=None, title=None):
     """Figs. 7, 10: ratio curves d_B / d_Wq against rho (each as Client.ensemble_series(ratio=...)
-    or Client.series(ratio=...) returns it): one "ratio" line per curve, its finite values."""
+    or Client.series(ratio=...) returns it): one "ratio" line per curve through its drawable values
+    (finite; > 0 on a log axis), broken at gaps as ensemble's "mean" lines; rho_j as in ensemble."""
     curves = [curves] if isinstance(curves, dict) else list(curves)
     fig = _figure()
     ax = fig.add_subplot()
+    axis = curves[0].get("axis", "rho") if curves else "rho"
+    if log:
+        ax.set_yscale("log")
     for k, c in enumerate(curves):
-        y = c["mean"] if "mean" in c else c["value"]
-        x, y = _finite(np.asarray(c["rho"], dtype=np.float64), np.asarray(y, dtype=np.float64))
+        y = np.asarray(c["mean"] if "mean" in c else c["value"], dtype=np.float64)
+        x = np.asarray(c["rho"], dtype=np.float64)
+        gx, gy = _gapped(x, y, _drawable(x, y, log), _neighbours(c, x))
         q = {"wasserstein1": "W1", "wasserstein2": "W2"}.get(c.get("ratio"), str(c.get("ratio")))
         label = labels[k] if labels else (f"{c.get('ensemble') or c.get('run')} $d_B / d_{{{q}}}$ "
                                           f"PD{c.get('dim', 0)}, {c.get('force', 'normal')}")
-        ax.plot(x, y, marker=".", color=f"C{k}", label=label, gid="ratio")
-    ax.set_xlabel(AXIS_LABELS.get(curves[0].get("axis", "rho") if curves else "rho", AXIS_LABELS["rho"]))
+        ax.plot(gx, gy, marker=".", color=f"C{k}", label=label, gid="ratio")
+        if log:
+            _mark_nonpositive(ax, x, y, f"C{k}")
+    _rho_j_marks(ax, rho_j, axis)
+    ax.set_xlabel(AXIS_LABELS.get(axis, AXIS_LABELS["rho"]))
     ax.set_ylabel("ratio of distances")
-    ax.legend(fontsize="small")
+    _legend(ax, None)
+    if title:
+        ax.set_title(title, fontsize="medium")
     return fig
 
 

@@ -114,7 +114,7 @@ def test_ensemble_figure_draws_mean_and_standard_error(client, tmp_path):
     assert len(means) == 2
     for line, c in zip(means, curves):
         keep = np.isfinite(c.mean)
-        np.testing.assert_array_equal(line.get_xydata(), np.column_stack([c.rho[keep], c.mean[keep]]))
+        np.testing.assert_array_equal(drawn(line), np.column_stack([c.rho[keep], c.mean[keep]]))
     bars = ax.containers
     for container, c in zip(bars, curves):
         keep = np.isfinite(c.mean)
@@ -123,7 +123,7 @@ def test_ensemble_figure_draws_mean_and_standard_error(client, tmp_path):
         np.testing.assert_allclose(segments[:, 0, 1], c.mean[keep] - se, rtol=1e-15)
         np.testing.assert_allclose(segments[:, 1, 1], c.mean[keep] + se, rtol=1e-15)
     (z,) = [a for a in fig.axes[1].get_children() if a.get_gid() == "z"]
-    np.testing.assert_array_equal(z.get_xydata(), np.column_stack([curves[0].rho, curves[0].z]))
+    np.testing.assert_array_equal(drawn(z), np.column_stack([curves[0].rho, curves[0].z]))
 
 
 def test_ratio_figure_draws_the_served_ratios(client, tmp_path):
@@ -134,7 +134,38 @@ def test_ratio_figure_draws_the_served_ratios(client, tmp_path):
     lines = [a for a in fig.axes[0].get_children() if a.get_gid() == "ratio"]
     for line, c in zip(lines, curves):
         keep = np.isfinite(c.mean)
-        np.testing.assert_array_equal(line.get_xydata(), np.column_stack([c.rho[keep], c.mean[keep]]))
+        np.testing.assert_array_equal(drawn(line), np.column_stack([c.rho[keep], c.mean[keep]]))
+
+
+def test_served_curves_on_log_axes_draw_no_value_at_or_below_zero_and_span_no_empty_bin(client, tmp_path):
+    # Bins of 0.002 over 8-frame runs: most of the grid is empty, so the lines must break.
+    curves = [client.ensemble_series(ensemble=ENSEMBLE, metric=m, dim=1, bin_width=0.002)
+              for m in ("bottleneck", "wasserstein1")]
+    (e,) = client.ensembles()
+    fig = figures.ensemble(curves, log=True, rho_j=e["rho_j"])
+    fig.savefig(tmp_path / "log.png")
+    gaps = 0
+    for line, c in zip([a for a in fig.axes[0].get_children() if a.get_gid() == "mean"], curves):
+        keep = np.isfinite(c.mean) & (c.mean > 0)
+        np.testing.assert_array_equal(drawn(line), np.column_stack([c.rho[keep], c.mean[keep]]))
+        assert (drawn(line)[:, 1] > 0).all()
+        xy = line.get_xydata()
+        for k in range(len(xy) - 1):
+            if np.isnan(xy[k:k + 2]).any():
+                gaps += 1
+                continue
+            a, b = (int(np.flatnonzero(c.rho == x)[0]) for x in (xy[k, 0], xy[k + 1, 0]))
+            assert b == a + 1 and c.rho_hi[a] == c.rho_lo[b], "a line spans an empty bin"
+    assert gaps > 0
+    bottom = fig.axes[0].get_ylim()[0]
+    for container in fig.axes[0].containers:
+        assert np.array(container.lines[2][0].get_segments())[:, 0, 1].min() >= bottom > 0
+
+
+def drawn(line):
+    """The points a line draws (the NaN rows that break it left out)."""
+    xy = line.get_xydata()
+    return xy[~np.isnan(xy).any(axis=1)]
 
 
 def test_ensemble_subscription_pushes_the_bins_a_new_realization_changes(server, processes, client):

@@ -259,7 +259,13 @@ def test_infinite_distances_are_left_out_of_the_line(client, tmp_path):
     render(fig, tmp_path / "separate.png")
     (line,) = artists(fig, "distance")
     keep = np.isfinite(s.value)
-    np.testing.assert_array_equal(line.get_xydata(), np.column_stack([s.rho[keep], s.value[keep]]))
+    np.testing.assert_array_equal(drawn_points(line), np.column_stack([s.rho[keep], s.value[keep]]))
+    # The line breaks where an infinite distance was left out: it joins only consecutive frames.
+    rho = list(s.rho)
+    for a, b in joined_pairs(line):
+        assert rho.index(b[0]) == rho.index(a[0]) + 1
+    assert len(joined_pairs(line)) == sum(keep[k] and keep[k + 1] for k in range(len(keep) - 1))
+    assert len(joined_pairs(line)) < keep.sum() - 1
 
 
 def test_store_series_plot_like_served_ones(server, client, tmp_path):
@@ -302,3 +308,89 @@ def test_blocks_over_the_packing_state_each_cells_normalization(client, server, 
 def st_frame_3(server):
     with fnet.store.open_store(server.store_path(RUN)) as st:
         return st.network(3)
+
+
+# ---- binned curves on log axes: gaps, values <= 0, clipped bars, rho_J -------------------------
+
+def curve(means, stderr, bins, width=0.01, z=None):
+    """An ensemble.series-like curve over the grid bins `bins` (k: [k w, (k+1) w))."""
+    bins = np.asarray(bins)
+    return {"rho_lo": bins * width, "rho_hi": (bins + 1) * width, "rho": (bins + 0.5) * width,
+            "mean": np.asarray(means, dtype=float), "stderr": np.asarray(stderr, dtype=float),
+            "n": np.full(len(bins), 4), "z": np.asarray(z if z is not None else np.linspace(1, 4, len(bins))),
+            "bin_width": width}
+
+
+def drawn_points(line):
+    xy = line.get_xydata()
+    return xy[~np.isnan(xy).any(axis=1)]
+
+
+def joined_pairs(line):
+    """The pairs of consecutive points a line joins (no NaN between them)."""
+    xy = line.get_xydata()
+    return [(xy[k], xy[k + 1]) for k in range(len(xy) - 1) if not np.isnan(xy[k:k + 2]).any()]
+
+
+def test_log_axes_never_draw_values_at_or_below_zero_nor_join_across_empty_bins(tmp_path):
+    # Bins 60-63 and 65-68 hold samples, 64 none; bin 62's mean is 0 (nothing changed), bin 66's
+    # standard error exceeds its mean, bin 61's is undefined.
+    c = curve([2.0, 1.5, 0.0, 1.0, 0.5, 0.2, 0.1, 0.05], [0.1, np.nan, 0.0, 0.2, 0.1, 0.3, 0.01, 0.01],
+              [60, 61, 62, 63, 65, 66, 67, 68])
+    fig = figures.ensemble(c, labels=["$d_B$"], log=True, rho_j={"mean": 0.645, "standard_error": 0.002, "n": 5},
+                           title="system")
+    render(fig, tmp_path / "log.png")
+    ax = fig.axes[0]
+    (line,) = artists(fig, "mean")
+    keep = c["mean"] > 0
+    np.testing.assert_array_equal(drawn_points(line), np.column_stack([c["rho"][keep], c["mean"][keep]]))
+    assert (drawn_points(line)[:, 1] > 0).all()
+    # No joined pair spans a bin that is empty (64) or left out (62).
+    for a, b in joined_pairs(line):
+        assert round((b[0] - a[0]) / 0.01) == 1, (a, b)
+    assert len(joined_pairs(line)) == 4  # 60-61, 65-66, 66-67, 67-68
+    # The zero mean is marked on the bottom edge, in axes coordinates.
+    (zero,) = artists(fig, "nonpositive")
+    np.testing.assert_array_equal(zero.get_xydata(), [[c["rho"][2], 0.0]])
+    # Error bars: mean ± stderr, the lower end clipped at the axis' bottom, never <= 0.
+    bottom = ax.get_ylim()[0]
+    assert bottom > 0
+    (bars,) = ax.containers
+    segments = np.array(bars.lines[2][0].get_segments())
+    se = np.nan_to_num(c["stderr"][keep])
+    np.testing.assert_allclose(segments[:, 1, 1], c["mean"][keep] + se, rtol=1e-15)
+    np.testing.assert_allclose(segments[:, 0, 1], np.maximum(c["mean"][keep] - se, bottom), rtol=1e-15)
+    assert segments[:, 0, 1].min() >= bottom and segments[4, 0, 1] == bottom  # bin 66: 0.2 - 0.3 < 0
+    # rho_J: a vertical line at its value, value ± standard error in the legend; Z in the legend.
+    (rho_j,) = artists(fig, "rho_j")
+    assert rho_j.get_xdata()[0] == 0.645
+    texts = [t.get_text() for t in fig.legends[0].get_texts()] if fig.legends else \
+        [t.get_text() for a in fig.axes if a.get_legend() for t in a.get_legend().get_texts()]
+    assert texts == ["$d_B$", r"$\rho_J$ = 0.6450 ± 0.0020", "Z"]
+    # Z follows the bins too: no line across the empty bin 64.
+    (z,) = artists(fig, "z")
+    np.testing.assert_array_equal(drawn_points(z), np.column_stack([c["rho"], c["z"]]))
+    assert len(joined_pairs(z)) == 6
+    assert ax.get_title() == "system"
+
+
+def test_linear_axes_draw_every_finite_mean_and_break_at_gaps():
+    c = curve([2.0, 0.0, -0.5, 1.0], [0.1, 0.1, 0.1, 0.1], [10, 11, 13, 14])
+    (line,) = artists(figures.ensemble(c), "mean")
+    np.testing.assert_array_equal(drawn_points(line), np.column_stack([c["rho"], c["mean"]]))
+    assert len(joined_pairs(line)) == 2  # 10-11 and 13-14, not 11-13
+
+
+def test_ratio_curves_on_log_axes_and_against_rho_minus_rho_j():
+    c = curve([0.7, np.nan, 0.6, 0.0, 0.5], [np.nan] * 5, [70, 71, 72, 73, 74])
+    c.update(ratio="wasserstein2", axis="rho_minus_rho_j")
+    fig = figures.ratio(c, log=True, rho_j=[{"mean": 0.81, "standard_error": 0.001, "label": "a"},
+                                            {"mean": 0.83, "standard_error": None, "label": "b"}])
+    (line,) = artists(fig, "ratio")
+    np.testing.assert_array_equal(drawn_points(line), [[c["rho"][k], c["mean"][k]] for k in (0, 2, 4)])
+    assert joined_pairs(line) == []  # 71 undefined and 73 zero: every neighbour is missing
+    marks = artists(fig, "rho_j")
+    assert [m.get_xdata()[0] for m in marks] == [0.0, 0.0]  # against rho - rho_J, rho_J is at 0
+    assert fig.axes[0].get_xlabel() == figures.AXIS_LABELS["rho_minus_rho_j"]
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert labels[1:] == [r"$\rho_J$ = 0.8100 ± 0.0010 (a)", r"$\rho_J$ = 0.8300 (b)"]
