@@ -147,18 +147,25 @@ def test_subscription_of_every_run_sends_every_frame_in_order(client):
     assert frames == list(range(LAMMPS_FRAMES)) and sub.unsubscribed == sub.id
 
 
-def test_subscribe_waits_for_a_run_not_yet_announced(client, processes):
+def test_subscribe_waits_for_a_run_not_yet_announced(client, server, processes):
     assert "late" not in [r["run"] for r in client.runs()]
-    starter = threading.Timer(2.0, lambda: publish_lammps(processes, "late", DOMAIN))
-    starter.start()
-    try:
-        began = time.monotonic()
-        with client.subscribe(run="late", wait=240) as sub:
-            waited = time.monotonic() - began
-            points = [next(sub) for _ in range(3)]
-    finally:
-        starter.join()
-    assert waited >= 2.0  # it was not there when asked: the subscription waited for it
+    got = {}
+
+    def subscriber():  # waits for the run on a connection of its own
+        try:
+            with fnet.Client("127.0.0.1", server.port) as c, c.subscribe(run="late", wait=240) as sub:
+                got["points"] = [next(sub) for _ in range(3)]
+        except BaseException as e:  # noqa: BLE001 -- handed to the test's thread
+            got["error"] = e
+
+    waiting = threading.Thread(target=subscriber)
+    waiting.start()
+    time.sleep(2.0)
+    assert waiting.is_alive() and not got  # the run is not there: the subscription waits
+    publish_lammps(processes, "late", DOMAIN)  # from this thread: the publisher dies with its starter
+    waiting.join(300)
+    assert "error" not in got, got.get("error")
+    points = got["points"]
     assert [p.frame for p in points] == [0, 1, 2] and all(p.run == "late" for p in points)
     stored = client.series("bottleneck", run="late", dim=1)
     assert [p.rho for p in points] == list(stored.rho[:3])

@@ -281,7 +281,7 @@ def test_blocks_over_the_packing_state_each_cells_normalization(client, server, 
     b = client.blocks(9, 10, run=RUN, k=2, metric="bottleneck", dim=0)
     whole = client.distance(9, 10, "bottleneck", run=RUN, dim=0).value
     with fnet.store.open_store(server.store_path(RUN)) as st:
-        network, other = st.network(9), st.network(10)
+        network, other, unrelated = st.network(9), st.network(10), st.network(5)
     for frame, which in ((network, 0), (other, 1)):
         fig = figures.blocks(b, network=frame, whole=whole)
         render(fig, tmp_path / f"blocks-over-{frame.index}.png")
@@ -301,13 +301,8 @@ def test_blocks_over_the_packing_state_each_cells_normalization(client, server, 
         assert len(contacts.get_segments()) == len(figures.normalized_network(frame)[0])
         note = caption(fig)
         assert "normalized by its own mean force" in note and figures.block_text(whole) in note
-    with pytest.raises(ValueError, match="frame 3"):
-        figures.blocks(b, network=st_frame_3(server))
-
-
-def st_frame_3(server):
-    with fnet.store.open_store(server.store_path(RUN)) as st:
-        return st.network(3)
+    with pytest.raises(ValueError, match="frame 5 is neither frame"):
+        figures.blocks(b, network=unrelated)
 
 
 # ---- binned curves on log axes: gaps, values <= 0, clipped bars, rho_J -------------------------
