@@ -408,7 +408,7 @@ def _z_line(ax, c, label):
     twin = ax.twinx()
     x, z = np.asarray(c["rho"], dtype=np.float64), np.asarray(c["z"], dtype=np.float64)
     zx, zy = _gapped(x, z, np.isfinite(x) & np.isfinite(z), _neighbours(c, x))
-    twin.plot(zx, zy, color="0.4", linestyle=":", label="Z", gid="z")
+    twin.plot(zx, zy, color="0.4", linestyle=":", marker=".", markersize=3, label="Z", gid="z")
     twin.set_ylabel(label)
     return twin
 

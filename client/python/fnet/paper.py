@@ -273,9 +273,9 @@ def _row_corr(x, y, mask):
 
 
 def _ratio_of(a, b):
-    """a / b per row, NaN (a degenerate ratio of zero medians, or undefined) where b is 0 or either
-    is not finite."""
-    ok = np.isfinite(a) & np.isfinite(b) & (b != 0)
+    """a / b per row, NaN where either is 0 (a degenerate ratio of zero medians: nothing changed on
+    one side, so no factor of change exists) or not finite."""
+    ok = np.isfinite(a) & np.isfinite(b) & (b != 0) & (a != 0)
     out = np.full(np.shape(a), np.nan)
     np.divide(a, b, out=out, where=ok)
     return np.where(np.isfinite(out), out, np.nan)
@@ -360,7 +360,8 @@ class Check:
         lo, hi = self.interval
         out = f"{self.label} {_fmt(self.estimate, digits)} [{_fmt(lo, digits)}, {_fmt(hi, digits)}]"
         if self.accept != UNTESTED:
-            out += f" (holds for {_range_text(*self.accept)}: {self.verdict}" + (f", {self.why}" if self.why else "") + ")"
+            why = f", {self.why}" if self.why else ""
+            out += f" (holds for {_range_text(*self.accept)}: {self.verdict}{why})"
         extra = [f"{n} {reason}" for reason, n in self.excluded.items()]
         if self.undefined and "undefined in" not in self.why:
             extra.append(f"undefined in {self.undefined} of {self.resamples} resamples")
@@ -393,6 +394,10 @@ class Finding:
 
 # ---- the findings ------------------------------------------------------------------------------
 
+def _bins(k):
+    return f"{int(k)} bin" + ("" if int(k) == 1 else "s")
+
+
 def _count(mask, region):
     """How many of the estimate's (row 0's) bins in region the mask marks."""
     return int(np.sum(mask[0] & region[0]))
@@ -407,7 +412,7 @@ def _ratio_excluded(bad, region):
 
 
 def _zero_median(*medians):
-    """The estimate's ratio of medians is degenerate when a denominator median is 0."""
+    """The estimate's ratio of medians is degenerate when one of its medians is 0."""
     return {"ratio of zero medians": int(any(m[0] == 0 for m in medians))}
 
 
@@ -444,7 +449,7 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
         share = _divide(np.sum(valid & (v > 1), axis=1), np.sum(valid, axis=1))
         checks.append(Check(f"PD{dim} share of bins below rho_J with d_B > 1", share, (0.5, 1.0), n,
                             _distances_excluded(v, below),
-                            note=f"median d_B {_fmt(_row_median(v, below)[0])} over {int(valid[0].sum())} bins"))
+                            note=f"median d_B {_fmt(_row_median(v, below)[0])} over {_bins(valid[0].sum())}"))
     out.append(Finding(CLAIMS[0], "; ".join(c.text() for c in checks), checks,
                        "holds if d_B > 1 in at least half of the bins below rho_J, PD0 and PD1"))
 
@@ -455,7 +460,7 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
             r, bad = e.ratio("normal", dim, RATIOS[label])
             name = f"PD{dim} {TEXT_SYMBOLS[label]}"
             checks.append(Check(f"{name} median", _row_median(r, early), (lo, hi), n, _ratio_excluded(bad, early),
-                                note=f"paper ~{target}, {int(np.sum(early[0] & np.isfinite(r[0])))} bins"))
+                                note=f"paper ~{target}, {_bins(np.sum(early[0] & np.isfinite(r[0])))}"))
             spread = _ratio_of(_row_percentile(r, early, 90, 2), _row_percentile(r, early, 10, 2))
             checks.append(Check(f"{name} p90/p10", spread, (1.0, 2.0), n))
     out.append(Finding(
@@ -470,7 +475,7 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
             v = e.mean("normal", dim, metric)
             m_early, m_late = _row_median(v, early), _row_median(v, late)
             checks.append(Check(f"PD{dim} {TEXT_SYMBOLS[metric]} last quarter / first half", _ratio_of(m_late, m_early),
-                                accept, n, {**_distances_excluded(v, early | late), **_zero_median(m_early)}))
+                                accept, n, {**_distances_excluded(v, early | late), **_zero_median(m_early, m_late)}))
     out.append(Finding(
         CLAIMS[2], "; ".join(c.text() for c in checks), checks,
         "holds if the median d_B over the last quarter of the unjammed range is at most its median over the "
@@ -484,14 +489,14 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
             m_pre, m_post = _row_median(v, below), _row_median(v, post)
             checks.append(Check(f"PD{dim} {TEXT_SYMBOLS[metric]} below / after rho_J", _ratio_of(m_pre, m_post),
                                 (10.0, math.inf), n, {**_distances_excluded(v, below | post),
-                                                       **_zero_median(m_post)}))
+                                                       **_zero_median(m_pre, m_post)}))
     for dim in DIMS:
         for label, orders, lo, hi in (("ratio_w2", 1, 0.5, 1.5), ("ratio_w1", 3, 2.0, 4.0)):
             r, bad = e.ratio("normal", dim, RATIOS[label])
             m_early, m_post = _row_median(r, early), _row_median(r, post)
             checks.append(Check(f"PD{dim} {TEXT_SYMBOLS[label]} orders of magnitude fallen",
                                 _log10(_ratio_of(m_early, m_post)), (lo, hi), n,
-                                {**_ratio_excluded(bad, early | post), **_zero_median(m_post)},
+                                {**_ratio_excluded(bad, early | post), **_zero_median(m_early, m_post)},
                                 note=f"paper {orders}; from {_fmt(m_early[0])} to {_fmt(m_post[0])}"))
     out.append(Finding(
         CLAIMS[3], "; ".join(c.text() for c in checks), checks,
@@ -512,7 +517,7 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
             if metric != "bottleneck":
                 m_n, m_t = _row_median(vn, near), _row_median(vt, near)
                 checks.append(Check(f"PD{dim} {TEXT_SYMBOLS[metric]} tangential / normal within {NEAR_JAMMING} of "
-                                    "rho_J", _ratio_of(m_t, m_n), (0.0, 1.0), n, _zero_median(m_n)))
+                                    "rho_J", _ratio_of(m_t, m_n), (0.0, 1.0), n, _zero_median(m_n, m_t)))
     out.append(Finding(
         CLAIMS[4], "; ".join(c.text() for c in checks), checks,
         f"holds if log10 of the normal and tangential curves correlate at 0.9 or more farther than "
@@ -535,7 +540,7 @@ def findings(data, frictional="0.5", frictionless="0", seed=SEED, resamples=RESA
             tested = metric == "wasserstein1"  # the paper's "about twice", judged on d_W1
             c = Check(f"PD1 {TEXT_SYMBOLS[metric]} after jamming, mu {frictionless} / mu {frictional}",
                       _ratio_of(medians[1], medians[0]), (1.4, 2.8) if tested else UNTESTED, both,
-                      _zero_median(medians[0]))
+                      _zero_median(*medians))
             texts.append(c.text())
             if tested:
                 checks.append(c)
@@ -925,7 +930,7 @@ def main(args):
         server_status=status, bin_width=args.bins,
         ensembles="; ".join(f"mu {mu}: {name} ({len(listed[name]['runs'])} realizations)"
                             for mu, name in ensembles.items()),
-        settings="; ".join(f"{k}={v}" for k, v in setup.items() if not k.startswith("runs of")))
+        settings="; ".join(f"{k}={v}" for k, v in setup.items() if not k.startswith(("runs of", "start comparison"))))
     systems = {mu: (system_text(mu, listed[name], len(listed[name]["runs"])),
                     system_text(mu, listed[name], len(listed[name]["runs"]), plain=True))
                for mu, name in ensembles.items()}

@@ -265,7 +265,6 @@ def test_infinite_distances_are_left_out_of_the_line(client, tmp_path):
     for a, b in joined_pairs(line):
         assert rho.index(b[0]) == rho.index(a[0]) + 1
     assert len(joined_pairs(line)) == sum(keep[k] and keep[k + 1] for k in range(len(keep) - 1))
-    assert len(joined_pairs(line)) < keep.sum() - 1
 
 
 def test_store_series_plot_like_served_ones(server, client, tmp_path):
@@ -389,3 +388,16 @@ def test_ratio_curves_on_log_axes_and_against_rho_minus_rho_j():
     assert fig.axes[0].get_xlabel() == figures.AXIS_LABELS["rho_minus_rho_j"]
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert labels[1:] == [r"$\rho_J$ = 0.8100 ± 0.0010 (a)", r"$\rho_J$ = 0.8300 (b)"]
+
+
+def test_a_runs_distances_on_log_axes_break_where_a_frame_is_left_out():
+    s = {"run": "r", "rho": np.array([0.60, 0.61, 0.62, 0.63, 0.64, 0.65]), "z": np.linspace(0, 3, 6),
+         "value": np.array([np.nan, 1.0, np.inf, 0.5, 0.0, 0.2]), "metric": "bottleneck", "dim": 1}
+    fig = figures.distances(s, log=True, rho_j=0.625)
+    (line,) = artists(fig, "distance")
+    np.testing.assert_array_equal(drawn_points(line), [[0.61, 1.0], [0.63, 0.5], [0.65, 0.2]])
+    assert joined_pairs(line) == []  # the infinite and the zero distance leave gaps
+    (zero,) = artists(fig, "nonpositive")
+    np.testing.assert_array_equal(zero.get_xydata(), [[0.64, 0.0]])
+    assert artists(fig, "rho_j")[0].get_xdata()[0] == 0.625
+    assert fig.axes[0].get_legend_handles_labels()[1][0] == "r $d_B$ PD1, normal forces"

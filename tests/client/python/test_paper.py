@@ -184,6 +184,10 @@ def test_degenerate_ratios_are_left_out_and_counted():
     c = check(finding(paper.findings({"0.5": flat}), 4), "PD0 d_B below / after")
     assert math.isnan(c.estimate) and c.verdict == "undetermined"
     assert c.excluded == {"ratio of zero medians": 1}
+    # ... and so is a factor from nothing: no change at all before jamming, some after.
+    late = realizations(lambda i, key, r: jammed(0.0, 0.5)(r), [0.8] * 5)
+    c = check(finding(paper.findings({"0.5": late}), 4), "PD1 d_W2 below / after")
+    assert math.isnan(c.estimate) and c.verdict == "undetermined" and "1 ratio of zero medians" in c.text()
 
 
 def test_the_frictionless_comparison_resamples_both_ensembles():
@@ -277,6 +281,11 @@ def environment():
     return dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"))
 
 
+def interruptible():
+    """In the child: SIGINT as a terminal delivers it (a test runner may have it ignored)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.fixture(scope="module")
 def report(server, tmp_path_factory):
     out = tmp_path_factory.mktemp("report") / "paper"
@@ -357,7 +366,7 @@ def test_report_starts_with_its_provenance_and_shows_its_figures(report):
 def test_ctrl_c_while_rendering_leaves_the_folder_as_it_was(server, report):
     before = {p: p.read_bytes() for p in report.rglob("*") if p.is_file()}
     p = subprocess.Popen(report_command(server, report), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=environment())
+                         env=environment(), preexec_fn=interruptible)
     deadline = time.monotonic() + 240
     staged = []
     while not staged and p.poll() is None and time.monotonic() < deadline:
@@ -377,7 +386,7 @@ def test_ctrl_c_while_rendering_leaves_the_folder_as_it_was(server, report):
 def test_ctrl_c_into_a_new_folder_leaves_none(server, tmp_path):
     out = tmp_path / "new-report"
     p = subprocess.Popen(report_command(server, out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=environment())
+                         env=environment(), preexec_fn=interruptible)
     deadline = time.monotonic() + 240
     staged = []
     while not staged and p.poll() is None and time.monotonic() < deadline:
