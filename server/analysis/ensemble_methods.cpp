@@ -166,9 +166,11 @@ Curve compute_curve(const Registry& registry, const CurveRequest& r, StepCache& 
       }
       shift = *rho_j;
     }
+    // A run's index in `runs` (its place in name order) names its samples' realization.
+    const std::size_t run = c.runs.size();
     c.runs.push_back(m.run_id);
     const auto add = [&](std::vector<CurveSample>& to, const std::vector<StepValue>& steps) {
-      const std::vector<CurveSample> s = curve_samples(steps, shift);
+      const std::vector<CurveSample> s = curve_samples(steps, shift, run);
       to.insert(to.end(), s.begin(), s.end());
     };
     add(numerator, steps_of(m, r.query, cache.numerator));
