@@ -62,12 +62,12 @@ std::string mean_cell(const json& r, std::size_t k, CellStyle style) {
 }
 
 void print_curve_csv(const json& r) {
-  std::cout << "rho_lo,rho_hi,rho,mean,stderr,n,z\n";
+  std::cout << "rho_lo,rho_hi,rho,mean,stderr,n_runs,n,z\n";
   for (std::size_t k = 0; k < r["n"].size(); ++k)
     std::cout << exact_number(r["rho_lo"][k].get<double>()) << "," << exact_number(r["rho_hi"][k].get<double>()) << ","
               << exact_number(r["rho"][k].get<double>()) << "," << mean_cell(r, k, CellStyle::csv) << ","
-              << exact_cell(r["stderr"][k]) << "," << r["n"][k].get<std::size_t>() << ","
-              << exact_number(r["z"][k].get<double>()) << "\n";
+              << exact_cell(r["stderr"][k]) << "," << r["n_runs"][k].get<std::size_t>() << ","
+              << r["n"][k].get<std::size_t>() << "," << exact_number(r["z"][k].get<double>()) << "\n";
 }
 
 void print_curve_table(const json& r) {
@@ -94,13 +94,14 @@ void print_curve_table(const json& r) {
   const std::string x = shifted ? "drho" : "rho";
   if (shifted) std::cout << "drho = rho - rho_J\n";
   std::cout << std::setw(11) << (x + "_lo") << std::setw(11) << (x + "_hi") << std::setw(11) << x << std::setw(16)
-            << "mean" << std::setw(12) << "stderr" << std::setw(6) << "n" << std::setw(8) << "Z"
+            << "mean" << std::setw(12) << "stderr" << std::setw(7) << "n_runs" << std::setw(6) << "n" << std::setw(8)
+            << "Z"
             << "\n";
   for (std::size_t k = 0; k < r["n"].size(); ++k)
     std::cout << std::setw(11) << cell(r["rho_lo"][k], 6) << std::setw(11) << cell(r["rho_hi"][k], 6) << std::setw(11)
               << cell(r["rho"][k], 6) << std::setw(16) << mean_cell(r, k, CellStyle::table) << std::setw(12)
-              << cell(r["stderr"][k], 3) << std::setw(6) << r["n"][k].get<std::size_t>() << std::setw(8)
-              << cell(r["z"][k], 4) << "\n";
+              << cell(r["stderr"][k], 3) << std::setw(7) << r["n_runs"][k].get<std::size_t>() << std::setw(6)
+              << r["n"][k].get<std::size_t>() << std::setw(8) << cell(r["z"][k], 4) << "\n";
 }
 
 }  // namespace

@@ -161,7 +161,8 @@ int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
       "       fnetctl query [--ensemble E] --ratio wasserstein1|wasserstein2 [options]\n\n"
       "A run's series (series.get), or with --ensemble (or --bins, --bin-count, --axis and a --run)\n"
       "the curve binned in rho (ensemble.series): per bin rho_lo, rho_hi, the mean rho, the mean\n"
-      "distance, its standard error, the number of values n and the mean Z.\n\noptions");
+      "distance over the runs (each run's mean first), its standard error across the runs, the\n"
+      "number of runs n_runs and of values n, and the mean Z.\n\noptions");
   SeriesOptions c;
   c.add(o, true, false);
   CurveOptions curve;
@@ -171,7 +172,7 @@ int cmd_query(Connection& rpc, const std::vector<std::string>& args) {
   o.add_options()("from", po::value(&from), "first frame index")("to", po::value(&to), "last frame index")(
       "format", po::value(&format)->default_value("table"),
       "table, csv (exact numbers; columns frame,step,time,rho,z,previous,value, or for a binned curve "
-      "rho_lo,rho_hi,rho,mean,stderr,n,z) or json (the API's answer)");
+      "rho_lo,rho_hi,rho,mean,stderr,n_runs,n,z) or json (the API's answer)");
   po::variables_map vm;
   if (!parse_command(o, args, &vm)) return kOk;
   format_option(format, {"table", "csv", "json"});

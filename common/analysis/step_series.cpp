@@ -24,11 +24,11 @@ void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> fr
   }
 }
 
-std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift) {
+std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift, std::size_t run) {
   std::vector<CurveSample> out;
   out.reserve(steps.size());
   for (const StepValue& s : steps)
-    if (s.value) out.push_back({s.rho - shift, s.z, *s.value});
+    if (s.value) out.push_back({s.rho - shift, s.z, *s.value, run});
   return out;
 }
 

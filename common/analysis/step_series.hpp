@@ -3,6 +3,7 @@
 // under the floor convention), else computed from the two frames' diagrams.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -36,7 +37,7 @@ struct StepValue {
 void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
                         std::size_t from, std::vector<StepValue>& out);
 
-// The samples a curve bins: each frame with a value, at rho - shift.
-std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift = 0);
+// The samples a curve bins: each frame with a value, at rho - shift, as samples of realization `run`.
+std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift = 0, std::size_t run = 0);
 
 }  // namespace fnet

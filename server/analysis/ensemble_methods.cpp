@@ -166,9 +166,11 @@ Curve compute_curve(const Registry& registry, const CurveRequest& r, StepCache& 
       }
       shift = *rho_j;
     }
+    // A run's index in `runs` (its place in name order) names its samples' realization.
+    const std::size_t run = c.runs.size();
     c.runs.push_back(m.run_id);
     const auto add = [&](std::vector<CurveSample>& to, const std::vector<StepValue>& steps) {
-      const std::vector<CurveSample> s = curve_samples(steps, shift);
+      const std::vector<CurveSample> s = curve_samples(steps, shift, run);
       to.insert(to.end(), s.begin(), s.end());
     };
     add(numerator, steps_of(m, r.query, cache.numerator));
@@ -189,7 +191,7 @@ json strings(const std::vector<std::string>& v) {
 // only when some is), a 0/0 ratio null.
 void put_bins(json& out, const std::vector<CurveBin>& bins) {
   json lo = json::array(), hi = json::array(), rho = json::array(), mean = json::array(), se = json::array(),
-       n = json::array(), z = json::array(), infinite = json::array();
+       n_runs = json::array(), n = json::array(), z = json::array(), infinite = json::array();
   bool any_infinite = false;
   for (const CurveBin& b : bins) {
     lo.push_back(b.rho_lo);
@@ -200,6 +202,7 @@ void put_bins(json& out, const std::vector<CurveBin>& bins) {
     mean.push_back(std::isfinite(b.mean) ? json(b.mean) : json(nullptr));
     infinite.push_back(inf);
     se.push_back(b.standard_error ? json(*b.standard_error) : json(nullptr));
+    n_runs.push_back(b.runs);
     n.push_back(b.n);
     z.push_back(b.mean_z);
   }
@@ -208,6 +211,7 @@ void put_bins(json& out, const std::vector<CurveBin>& bins) {
   out["rho"] = rho;
   out["mean"] = mean;
   out["stderr"] = se;
+  out["n_runs"] = n_runs;
   out["n"] = n;
   out["z"] = z;
   if (any_infinite) out["infinite"] = infinite;
@@ -296,7 +300,7 @@ bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::is
 
 bool same_bin(const CurveBin& a, const CurveBin& b) {
   return same_value(a.rho_lo, b.rho_lo) && same_value(a.rho_hi, b.rho_hi) && same_value(a.mean_rho, b.mean_rho) &&
-         same_value(a.mean, b.mean) && a.n == b.n && same_value(a.mean_z, b.mean_z) &&
+         same_value(a.mean, b.mean) && a.runs == b.runs && a.n == b.n && same_value(a.mean_z, b.mean_z) &&
          a.standard_error.has_value() == b.standard_error.has_value() &&
          (!a.standard_error || same_value(*a.standard_error, *b.standard_error));
 }

@@ -85,65 +85,90 @@ class Ensemble : public ::testing::Test {
   unsigned short port_ = 0;
 };
 
-// One value binned: at x (rho, or rho - rho_J), with Z and the value (inf allowed).
+// One value binned: at x (rho, or rho - rho_J), with Z and the value (inf allowed), of the run
+// `run` (its place in the curve's `runs`).
 struct Sample {
   double x, z, value;
+  std::size_t run;
 };
 
 struct Bin {
   double lo, hi, rho, mean, z;
   std::optional<double> stderr_;
-  std::size_t n;
+  std::size_t n_runs, n;
 };
 
 // The bins as proto/api.md defines them, written out independently of the server's code: width
-// bins at multiples of the width, or `count` bins over [min x, max x] (the last closed); samples
-// in the order given (runs by name, frames by index), mean and standard error in two passes.
+// bins [k w, (k+1) w) at multiples of the width, or `count` bins over [min x, max x] (the last
+// closed), a sample in the bin whose edges hold it; per bin each run's mean of its samples
+// (frames by index), then the mean over the runs (by name) and the standard error across them.
 std::vector<Bin> expected_bins(const std::vector<Sample>& samples, double width, std::size_t count) {
-  std::map<long long, std::vector<Sample>> groups;
   double lo = samples.front().x, hi = lo;
   for (const Sample& s : samples) lo = std::min(lo, s.x), hi = std::max(hi, s.x);
   const double step = count > 0 ? (hi - lo) / static_cast<double>(count) : width;
   const long long last = static_cast<long long>(count) - 1;
+  const auto edge = [&](long long k) {
+    return count == 0 ? static_cast<double>(k) * width : k > last ? hi : lo + static_cast<double>(k) * step;
+  };
+  // Per bin, per run: the sums of x, z, value and the count.
+  struct Sums {
+    double x = 0, z = 0, value = 0;
+    std::size_t n = 0;
+  };
+  std::map<long long, std::map<std::size_t, Sums>> groups;
   for (const Sample& s : samples) {
-    const long long k = count > 0 ? std::min(last, step > 0 ? static_cast<long long>(std::floor((s.x - lo) / step)) : 0)
-                                  : static_cast<long long>(std::floor(s.x / width));
-    groups[k].push_back(s);
+    long long k = 0;
+    if (count == 0 || step > 0) {
+      k = static_cast<long long>(std::floor(count > 0 ? (s.x - lo) / step : s.x / width));
+      while (s.x < edge(k) && (count == 0 || k > 0)) --k;
+      while (s.x >= edge(k + 1) && (count == 0 || k < last)) ++k;
+      if (count > 0) k = std::min(k, last);
+    }
+    Sums& g = groups[k][s.run];
+    g.x += s.x, g.z += s.z, g.value += s.value, ++g.n;
   }
   std::vector<Bin> out;
-  for (const auto& [k, members] : groups) {
+  for (const auto& [k, runs] : groups) {
     Bin b{};
-    b.n = members.size();
-    b.lo = count > 0 ? lo + static_cast<double>(k) * step : static_cast<double>(k) * width;
-    b.hi = count > 0 ? (k == last ? hi : lo + static_cast<double>(k + 1) * step) : static_cast<double>(k + 1) * width;
-    const double n = static_cast<double>(b.n);
+    b.lo = edge(k);
+    b.hi = edge(k + 1);
+    b.n_runs = runs.size();
+    std::vector<double> means;
     double rho = 0, z = 0, v = 0;
-    for (const Sample& s : members) rho += s.x, z += s.z, v += s.value;
-    b.rho = rho / n;
-    b.z = z / n;
-    b.mean = v / n;
-    if (b.n >= 2 && std::isfinite(b.mean)) {
+    for (const auto& [run, g] : runs) {
+      b.n += g.n;
+      const double n = static_cast<double>(g.n);
+      rho += g.x / n, z += g.z / n;
+      means.push_back(g.value / n);
+      v += means.back();
+    }
+    const double r = static_cast<double>(b.n_runs);
+    b.rho = rho / r;
+    b.z = z / r;
+    b.mean = v / r;
+    if (b.n_runs >= 2 && std::isfinite(b.mean)) {
       double sq = 0;
-      for (const Sample& s : members) sq += (s.value - b.mean) * (s.value - b.mean);
-      b.stderr_ = std::sqrt(sq / (n - 1)) / std::sqrt(n);
+      for (const double m : means) sq += (m - b.mean) * (m - b.mean);
+      b.stderr_ = std::sqrt(sq / (r - 1)) / std::sqrt(r);
     }
     out.push_back(b);
   }
   return out;
 }
 
-// Each member's series.get as samples: frames with a value, at rho - shift.
+// Each member's series.get as samples: frames with a value, at rho - shift, of the run's place in `runs`.
 std::vector<Sample> served_samples(Ensemble& t, const std::vector<std::string>& runs, json params,
                                    const std::map<std::string, double>& shift) {
   std::vector<Sample> out;
-  for (const std::string& run : runs) {
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const std::string& run = runs[r];
     params["run"] = run;
     const json s = t.call("series.get", params);
     for (std::size_t k = 0; k < s["frame"].size(); ++k) {
       const bool infinite = s.contains("infinite") && s["infinite"][k].get<bool>();
       if (s["value"][k].is_null() && !infinite) continue;
       out.push_back({s["rho"][k].get<double>() - (shift.count(run) ? shift.at(run) : 0.0), s["z"][k].get<double>(),
-                     infinite ? INFINITY : s["value"][k].get<double>()});
+                     infinite ? INFINITY : s["value"][k].get<double>(), r});
     }
   }
   return out;
@@ -152,7 +177,7 @@ std::vector<Sample> served_samples(Ensemble& t, const std::vector<std::string>& 
 // The served bins equal `expected`, number for number.
 void expect_bins(const json& served, const std::vector<Bin>& expected) {
   ASSERT_EQ(served["n"].size(), expected.size()) << served.dump();
-  for (const char* key : {"rho_lo", "rho_hi", "rho", "mean", "stderr", "z"})
+  for (const char* key : {"rho_lo", "rho_hi", "rho", "mean", "stderr", "n_runs", "z"})
     ASSERT_EQ(served[key].size(), expected.size()) << key;
   bool any_infinite = false;
   for (std::size_t k = 0; k < expected.size(); ++k) {
@@ -163,6 +188,7 @@ void expect_bins(const json& served, const std::vector<Bin>& expected) {
     EXPECT_EQ(served["rho"][k].get<double>(), e.rho);
     EXPECT_EQ(served["z"][k].get<double>(), e.z);
     EXPECT_EQ(served["n"][k].get<std::size_t>(), e.n);
+    EXPECT_EQ(served["n_runs"][k].get<std::size_t>(), e.n_runs);
     if (std::isinf(e.mean)) {
       any_infinite = true;
       EXPECT_TRUE(served["mean"][k].is_null());
@@ -186,6 +212,7 @@ std::vector<Bin> ratio_of(const std::vector<Bin>& top, const std::vector<Bin>& b
     out[k].mean = top[k].mean / bottom[k].mean;
     out[k].stderr_.reset();
     out[k].n = std::min(top[k].n, bottom[k].n);
+    out[k].n_runs = std::min(top[k].n_runs, bottom[k].n_runs);
   }
   return out;
 }
@@ -219,6 +246,7 @@ TEST_F(Ensemble, SeriesEqualsTheBinsOfItsMembersSeries) {
        true},
       {"separate: infinite bins", {{"metric", "bottleneck"}, {"essential", "separate"}}, {{"bin_width", 0.1}}, false},
   };
+  std::size_t pooled_differs = 0;  // bins where the mean over runs is not the mean over frames
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
     json params = c.series;
@@ -237,10 +265,12 @@ TEST_F(Ensemble, SeriesEqualsTheBinsOfItsMembersSeries) {
       EXPECT_FALSE(served.contains("runs_without_rho_j"));
     const double width = c.binning.value("bin_width", 0.0);
     const std::size_t count = c.binning.value("bins", std::size_t{0});
-    expect_bins(served, expected_bins(
-                            served_samples(*this, used, c.series, c.shifted ? rho_j : std::map<std::string, double>{}),
-                            width, count));
+    const std::vector<Bin> expected = expected_bins(
+        served_samples(*this, used, c.series, c.shifted ? rho_j : std::map<std::string, double>{}), width, count);
+    expect_bins(served, expected);
+    for (const Bin& b : expected) pooled_differs += b.n_runs >= 2 && b.n > b.n_runs;
   }
+  EXPECT_GE(pooled_differs, 5u) << "too few bins where several runs have several frames";
 
   // The ratio curve: the ratio of the bin means of d_B and d_W2, as the paper plots it.
   const json ratio =
@@ -346,7 +376,7 @@ TEST_F(Ensemble, BadParametersAreNamedBeforeAnyWork) {
 // those of the same rho_lo or are added, those of `removed` go, and the members are the latest.
 void apply(json& curve, const json& update) {
   std::map<double, json> bins;
-  const auto keys = {"rho_lo", "rho_hi", "rho", "mean", "stderr", "n", "z", "infinite"};
+  const auto keys = {"rho_lo", "rho_hi", "rho", "mean", "stderr", "n_runs", "n", "z", "infinite"};
   const auto take = [&](const json& from) {
     for (std::size_t k = 0; k < from["rho_lo"].size(); ++k) {
       json bin;
@@ -531,20 +561,22 @@ TEST_F(Ensemble, FnetctlPrintsTheServedEnsemblesAndCurves) {
     ASSERT_EQ(o.code, 0) << o.err;
     rows = parse_csv(o.out);
     ASSERT_EQ(rows.size(), 1 + served["n"].size()) << o.out;
-    EXPECT_EQ(rows[0], (std::vector<std::string>{"rho_lo", "rho_hi", "rho", "mean", "stderr", "n", "z"}));
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"rho_lo", "rho_hi", "rho", "mean", "stderr", "n_runs", "n", "z"}));
     for (std::size_t k = 0; k < served["n"].size(); ++k) {
-      ASSERT_EQ(rows[k + 1].size(), 7u) << o.out;
+      ASSERT_EQ(rows[k + 1].size(), 8u) << o.out;
       expect_cell(rows[k + 1][0], served["rho_lo"][k]);
       expect_cell(rows[k + 1][1], served["rho_hi"][k]);
       expect_cell(rows[k + 1][2], served["rho"][k]);
       expect_cell(rows[k + 1][3], served["mean"][k]);
       expect_cell(rows[k + 1][4], served["stderr"][k]);
-      EXPECT_EQ(rows[k + 1][5], served["n"][k].dump());
-      expect_cell(rows[k + 1][6], served["z"][k]);
+      EXPECT_EQ(rows[k + 1][5], served["n_runs"][k].dump());
+      EXPECT_EQ(rows[k + 1][6], served["n"][k].dump());
+      expect_cell(rows[k + 1][7], served["z"][k]);
     }
     o = ctl(args);
     ASSERT_EQ(o.code, 0) << o.err;
     EXPECT_NE(o.out.find("ensemble ens"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find(" n_runs "), std::string::npos) << o.out;
   }
 
   // A run's own ratio series, frame by frame.

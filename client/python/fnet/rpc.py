@@ -124,12 +124,13 @@ def _ensemble_series(result):
         out["infinite"] = np.isinf(out["mean"])
     if "stderr" in result:
         out["stderr"] = float_array(result["stderr"])
-    if "n" in result:
-        out["n"] = np.array(result["n"], dtype=np.int64)
+    for key in ("n_runs", "n"):
+        if key in result:
+            out[key] = np.array(result[key], dtype=np.int64)
     return out
 
 
-_BIN_ARRAYS = ("rho_lo", "rho_hi", "rho", "mean", "stderr", "n", "z", "infinite")
+_BIN_ARRAYS = ("rho_lo", "rho_hi", "rho", "mean", "stderr", "n_runs", "n", "z", "infinite")
 
 
 def apply_bins(curve, change):
@@ -142,7 +143,7 @@ def apply_bins(curve, change):
         bins[lo] = {key: change[key][k] for key in _BIN_ARRAYS}
     out = Result({k: v for k, v in change.items() if k not in _BIN_ARRAYS + ("removed", "subscription")})
     order = sorted(bins)
-    for key, dtype in zip(_BIN_ARRAYS, (float, float, float, float, float, np.int64, float, bool)):
+    for key, dtype in zip(_BIN_ARRAYS, (float, float, float, float, float, np.int64, np.int64, float, bool)):
         out[key] = np.array([bins[lo][key] for lo in order], dtype=dtype)
     return out
 
@@ -315,7 +316,7 @@ class Client:
     def ensemble_series(self, ensemble=None, run=None, metric=None, dim=0, force="normal", q=None, essential="floor",
                         bin_width=None, bins=None, axis=None, ratio=None):
         """ensemble.series as numpy arrays per bin: rho_lo, rho_hi, rho, mean (+inf where infinite),
-        stderr (NaN where undefined), n, z."""
+        stderr (NaN where undefined), n_runs, n, z."""
         return _ensemble_series(self.call("ensemble.series", _ensemble_params(**locals())))
 
     def blocks(self, frame, other_frame, run=None, k=None, metric="bottleneck", dim=0, force="normal", q=None,

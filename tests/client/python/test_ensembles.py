@@ -1,6 +1,7 @@
 """Ensembles through fnet.Client, fnet.figures and the command line, against a real fnet-server fed
 by real fnet-simd realizations (--ensemble E, one seed each): the binned curves are the members'
-series binned by hand, ratio curves the ratio of bin means, the plotted data the served data, and
+series binned by hand (each realization's mean first, then the mean and standard error across the
+realizations), ratio curves the ratio of bin means, the plotted data the served data, and
 an ensemble subscription an iterator of changed bins that unsubscribes on exit."""
 
 import numpy as np
@@ -32,15 +33,26 @@ def members():
 
 
 def samples(client, runs, metric, dim=0, force="normal"):
-    """(rho, z, value) of every frame with a previous frame, over the runs."""
-    rho, z, value = [], [], []
-    for run in runs:
-        s = client.series(metric, run=run, dim=dim, force=force)
+    """(rho, z, value, run) of every frame with a previous frame, over the runs; run is the run's
+    place in `runs`."""
+    rho, z, value, run = [], [], [], []
+    for k, name in enumerate(runs):
+        s = client.series(metric, run=name, dim=dim, force=force)
         keep = s.previous >= 0
         rho += list(s.rho[keep])
         z += list(s.z[keep])
         value += list(s.value[keep])
-    return np.array(rho), np.array(z), np.array(value)
+        run += [k] * int(keep.sum())
+    return np.array(rho), np.array(z), np.array(value), np.array(run)
+
+
+def over_runs(inside, run, *columns):
+    """Per column, the mean over the runs present of each run's mean over `inside`; then the
+    number of runs and the standard error of the first column's run means (NaN for one run)."""
+    present = np.unique(run[inside])
+    means = [np.array([c[inside & (run == r)].mean() for r in present]) for c in columns]
+    se = means[0].std(ddof=1) / np.sqrt(len(present)) if len(present) > 1 else np.nan
+    return [m.mean() for m in means], len(present), se
 
 
 def test_ensembles_list_names_the_realizations(client):
@@ -53,30 +65,32 @@ def test_curve_arrays_are_the_served_arrays(client):
     c = client.ensemble_series(ensemble=ENSEMBLE, metric="bottleneck", dim=1, bins=4)
     raw = client.call("ensemble.series", {"ensemble": ENSEMBLE, "metric": "bottleneck", "dim": 1, "bins": 4})
     assert c.runs == members() and c.ensemble == ENSEMBLE
-    for key in ("rho_lo", "rho_hi", "rho", "mean", "z", "n"):
+    for key in ("rho_lo", "rho_hi", "rho", "mean", "z", "n_runs", "n"):
         np.testing.assert_array_equal(c[key], np.array(raw[key], dtype=c[key].dtype))
     np.testing.assert_array_equal(c.stderr, [np.nan if v is None else v for v in raw["stderr"]])
-    assert c.n.dtype == np.int64 and c.mean.dtype == np.float64
+    assert c.n.dtype == np.int64 and c.n_runs.dtype == np.int64 and c.mean.dtype == np.float64
 
 
 @pytest.mark.parametrize("metric,dim,force", [("bottleneck", 0, "normal"), ("wasserstein2", 1, "tangential")])
 def test_bins_hold_the_members_series(client, metric, dim, force):
     c = client.ensemble_series(ensemble=ENSEMBLE, metric=metric, dim=dim, force=force, bins=5)
-    rho, z, value = samples(client, members(), metric, dim, force)
+    rho, z, value, run = samples(client, members(), metric, dim, force)
     assert c.n.sum() == len(value)
     last = len(c.rho_lo) - 1
     for k in range(len(c.rho_lo)):
         inside = (rho >= c.rho_lo[k]) & ((rho < c.rho_hi[k]) | ((k == last) & (rho <= c.rho_hi[k])))
-        assert inside.sum() == c.n[k]
-        if c.n[k] == 0:
-            continue
-        np.testing.assert_allclose(c.mean[k], value[inside].mean(), rtol=1e-12)
-        np.testing.assert_allclose(c.rho[k], rho[inside].mean(), rtol=1e-12)
-        np.testing.assert_allclose(c.z[k], z[inside].mean(), rtol=1e-12)
-        if c.n[k] > 1:
-            np.testing.assert_allclose(c.stderr[k], value[inside].std(ddof=1) / np.sqrt(c.n[k]), rtol=1e-9)
+        assert inside.sum() == c.n[k] > 0
+        (mean, mean_rho, mean_z), runs, se = over_runs(inside, run, value, rho, z)
+        assert c.n_runs[k] == runs
+        np.testing.assert_allclose(c.mean[k], mean, rtol=1e-12)
+        np.testing.assert_allclose(c.rho[k], mean_rho, rtol=1e-12)
+        np.testing.assert_allclose(c.z[k], mean_z, rtol=1e-12)
+        if runs > 1:
+            np.testing.assert_allclose(c.stderr[k], se, rtol=1e-9)
         else:
             assert np.isnan(c.stderr[k])
+    # Bins where averaging over the runs is not pooling the frames: the check tells them apart.
+    assert ((c.n_runs >= 2) & (c.n > c.n_runs)).sum() >= 2
 
 
 @pytest.mark.parametrize("ratio", ["wasserstein1", "wasserstein2"])
@@ -86,6 +100,9 @@ def test_ratio_curve_is_the_ratio_of_bin_means(client, ratio):
     w = client.ensemble_series(ensemble=ENSEMBLE, metric=ratio, dim=1, bin_width=0.05)
     assert r.ratio == ratio
     np.testing.assert_array_equal(r.rho_lo, b.rho_lo)
+    np.testing.assert_array_equal(r.n_runs, np.minimum(b.n_runs, w.n_runs))
+    np.testing.assert_array_equal(r.n, np.minimum(b.n, w.n))
+    assert np.isnan(r.stderr).all()
     with np.errstate(invalid="ignore"):  # 0 / 0 where no loop changed: null, as the server serves it
         np.testing.assert_allclose(r.mean, b.mean / w.mean, rtol=1e-12)
     s = client.series("bottleneck", run=members()[0], dim=1, ratio=ratio)
@@ -98,6 +115,7 @@ def test_ratio_curve_is_the_ratio_of_bin_means(client, ratio):
 def test_one_run_curve_and_rho_minus_rho_j(client):
     c = client.ensemble_series(run=members()[0], metric="bottleneck", bins=3)
     assert c.run == members()[0] and c.runs == [members()[0]]
+    assert (c.n_runs == 1).all() and np.isnan(c.stderr).all()
     j = client.ensemble_series(ensemble=ENSEMBLE, metric="bottleneck", axis="rho_minus_rho_j", bins=3)
     assert j.axis == "rho_minus_rho_j"
     fig = figures.ensemble(j)
@@ -185,13 +203,13 @@ def test_ensemble_subscription_pushes_the_bins_a_new_realization_changes(server,
     latest = {}
     for n in got:
         for k, lo in enumerate(n.rho_lo):
-            latest[lo] = (n.mean[k], n.n[k])
-    for lo, (mean, count) in latest.items():
+            latest[lo] = (n.mean[k], n.n[k], n.n_runs[k])
+    for lo, (mean, count, runs) in latest.items():
         k = int(np.flatnonzero(final.rho_lo == lo)[0])
-        assert count == final.n[k]
+        assert count == final.n[k] and runs == final.n_runs[k]
         np.testing.assert_allclose(mean, final.mean[k], rtol=1e-12)
     # The notifications applied over the curve at subscription give the curve served now.
-    for key in ("rho_lo", "rho_hi", "rho", "mean", "stderr", "n", "z"):
+    for key in ("rho_lo", "rho_hi", "rho", "mean", "stderr", "n_runs", "n", "z"):
         np.testing.assert_array_equal(sub.curve[key], final[key], err_msg=key)
     assert sub.curve.runs == final.runs == members() + [f"{ENSEMBLE}-s4"]
     (e,) = client.ensembles()

@@ -67,8 +67,10 @@ TEST(StepSeries, AppendingTheNewFramesEqualsComputingThemAll) {
 TEST(StepSeries, CurveSamplesAreTheFramesWithAValueShifted) {
   std::vector<StepValue> steps;
   append_step_values(kFrames, query(parse_metric("bottleneck")), 0, steps);
-  const auto samples = curve_samples(steps, 0.5);
+  const auto samples = curve_samples(steps, 0.5, 7);
   ASSERT_EQ(samples.size(), 2u);
+  EXPECT_EQ(samples[0].run, 7u);
+  EXPECT_EQ(samples[1].run, 7u);
   EXPECT_EQ(samples[0].rho, kFrames[1]->header.rho - 0.5);
   EXPECT_EQ(samples[1].z, 6.0);
   EXPECT_EQ(samples[1].value, 42.0);
