@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "client/commands.hpp"
+#include "client/csv_provenance.hpp"
 #include "client/value_text.hpp"
 
 namespace po = boost::program_options;
@@ -20,11 +21,11 @@ std::string cell(const json& v, int significant) {
 std::string exact_cell(const json& v) { return v.is_null() ? "" : exact_number(v.get<double>()); }
 
 void print_ensembles_table(const json& r) {
-  std::printf("%-20s %5s %7s %6s %6s %10s %10s %10s %4s\n", "ensemble", "runs", "frames", "mu", "N", "v_c", "rho_J",
+  std::printf("%-34s %5s %7s %6s %6s %10s %10s %10s %4s\n", "ensemble", "runs", "frames", "mu", "N", "v_c", "rho_J",
               "+-", "n_J");
   for (const json& e : r["ensembles"]) {
     const json& j = e["rho_j"];
-    std::printf("%-20s %5zu %7zu %6s %6s %10s %10s %10s %4zu\n", e["ensemble"].get<std::string>().c_str(),
+    std::printf("%-34s %5zu %7zu %6s %6s %10s %10s %10s %4zu\n", e["ensemble"].get<std::string>().c_str(),
                 e["runs"].size(), e["frames"].get<std::size_t>(), cell(e["friction"], 3).c_str(),
                 e["particles"].is_null() ? "-" : e["particles"].dump().c_str(), cell(e["compression_speed"], 3).c_str(),
                 cell(j["mean"], 5).c_str(), cell(j["standard_error"], 2).c_str(), j["n"].get<std::size_t>());
@@ -94,14 +95,14 @@ void print_curve_table(const json& r) {
   const std::string x = shifted ? "drho" : "rho";
   if (shifted) std::cout << "drho = rho - rho_J\n";
   std::cout << std::setw(11) << (x + "_lo") << std::setw(11) << (x + "_hi") << std::setw(11) << x << std::setw(16)
-            << "mean" << std::setw(12) << "stderr" << std::setw(7) << "n_runs" << std::setw(6) << "n" << std::setw(8)
+            << "mean" << std::setw(12) << "stderr" << std::setw(7) << "n_runs" << std::setw(6) << "n" << std::setw(11)
             << "Z"
             << "\n";
   for (std::size_t k = 0; k < r["n"].size(); ++k)
     std::cout << std::setw(11) << cell(r["rho_lo"][k], 6) << std::setw(11) << cell(r["rho_hi"][k], 6) << std::setw(11)
               << cell(r["rho"][k], 6) << std::setw(16) << mean_cell(r, k, CellStyle::table) << std::setw(12)
               << cell(r["stderr"][k], 3) << std::setw(7) << r["n_runs"][k].get<std::size_t>() << std::setw(6)
-              << r["n"][k].get<std::size_t>() << std::setw(8) << cell(r["z"][k], 4) << "\n";
+              << r["n"][k].get<std::size_t>() << std::setw(11) << cell(r["z"][k], 4) << "\n";
 }
 
 }  // namespace
@@ -122,9 +123,10 @@ int ensembles_command(RpcClient& rpc, const std::vector<std::string>& args) {
   const json r = rpc.call("ensembles.list");
   if (format == "json")
     std::cout << r.dump() << "\n";
-  else if (format == "csv")
+  else if (format == "csv") {
+    std::cout << csv_provenance_line(rpc, "ensembles.list", "none (a list)") << "\n";
     print_ensembles_csv(r);
-  else
+  } else
     print_ensembles_table(r);
   return kOk;
 }
@@ -183,9 +185,19 @@ int curve_query(RpcClient& rpc, const json& params, const std::string& format) {
   const json r = rpc.call("ensemble.series", params);
   if (format == "json")
     std::cout << r.dump() << "\n";
-  else if (format == "csv")
+  else if (format == "csv") {
+    const std::string what = r["ensemble"].is_string() ? "ensemble " + r["ensemble"].get<std::string>()
+                                                       : "run " + r["run"].get<std::string>();
+    std::cout << csv_provenance_line(rpc,
+                                     what + ", " + r["metric"].get<std::string>() +
+                                         (r["ratio"].is_string() ? " / " + r["ratio"].get<std::string>() : "") + " PD" +
+                                         r["dim"].dump() + ", " + r["force"].get<std::string>() +
+                                         " forces, binned in " + r["axis"].get<std::string>() +
+                                         "; mean and stderr over the realizations",
+                                     r["essential"].get<std::string>())
+              << "\n";
     print_curve_csv(r);
-  else
+  } else
     print_curve_table(r);
   return kOk;
 }

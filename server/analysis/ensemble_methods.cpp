@@ -111,7 +111,7 @@ CurveRequest get_curve_request(const Registry& registry, const json& params) {
   else if (axis != "rho")
     invalid("axis", "parameter 'axis' must be rho or rho_minus_rho_j, got '" + axis + "'");
   if (run) {
-    if (run->empty() || !registry.has_run(*run)) unknown_run(*run);
+    if (run->empty() || !registry.has_run(*run)) unknown_run(registry, *run);
     r.run = *run;
   } else {
     if (registry.ensemble_members(*ensemble).empty()) unknown_ensemble(*ensemble);

@@ -490,6 +490,10 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   std::stringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
     if (line.empty()) continue;
+    if (rows.empty() && line[0] == '#') {  // fnetctl's provenance comment: the builds and the request
+      EXPECT_EQ(line.rfind("# fnet-server ", 0), 0u) << line;
+      continue;
+    }
     std::vector<std::string> cells;
     std::stringstream cs(line);
     for (std::string cell; std::getline(cs, cell, ',');) cells.push_back(cell);

@@ -772,7 +772,7 @@ def write_report(path, info, setup, realizations, rho_j, found, made, tables, ti
               f"({RESAMPLES} resamples of the runs with replacement, seed {SEED}); a check holds or does not only "
               f"when its interval lies inside or outside the range it is judged on, and is undetermined otherwise "
               f"or with fewer than {MIN_REALIZATIONS} realizations", "",
-              "Kramar, Goullet, Kondic, Mischaikow (2014), Sec. IV: distances between consecutive frames of "
+              "Kramar, Goulet, Kondic, Mischaikow (2014), Sec. IV: distances between consecutive frames of "
               "compressions through jamming, averaged over realizations, measured live by fnet-server.", "",
               "## Setting", ""]
     lines += [f"- {k}: {v}" for k, v in setup.items()]
