@@ -162,7 +162,8 @@ def _packing_axes(ax, frame, walls):
 
 
 def _frame_title(frame):
-    return f"{frame.get('run', '')} frame {frame.index}, " + r"$\rho$" + f" = {frame.rho:.4f}, Z = {frame.z:.3f}"
+    # Two lines: a run's name is long, and one line would run under the colour bar or off the figure.
+    return f"{frame.get('run', '')}\nframe {frame.index}, " + r"$\rho$" + f" = {frame.rho:.4f}, Z = {frame.z:.3f}"
 
 
 def network(frame, force="normal", cmap="viridis", grains=True, walls=None):
@@ -247,7 +248,7 @@ def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True,
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize="small",
               frameon=False)
     fig.supxlabel(_packing_axes(ax, after, walls), fontsize="small")
-    ax.set_title(f"{after.get('run', '')} frame {before.index} → {after.index}, " + r"$\rho$"
+    ax.set_title(f"{after.get('run', '')}\nframe {before.index} → {after.index}, " + r"$\rho$"
                  + f" = {before.rho:.4f} → {after.rho:.4f}")
     return fig
 
@@ -613,7 +614,7 @@ def _blocks_over(table, network, whole, walls):
                                gid="largest", zorder=4))
     _packing_axes(ax, network, walls)
     fig.colorbar(cells, ax=ax, shrink=0.8, label=_metric_label(table) + ", per cell")
-    ax.set_title(f"{table.get('run', '')} frames {table.get('frame')} → {table.get('other_frame')}, k = {k}, "
+    ax.set_title(f"{table.get('run', '')}\nframes {table.get('frame')} → {table.get('other_frame')}, k = {k}, "
                  f"drawn over frame {network.index}")
     fig.supxlabel(_normalization_note(table, whole), fontsize="small")
     return fig
