@@ -1,7 +1,7 @@
 """deploy/reproduce-paper.sh end to end on small sizes: two ensembles simulated by fnet-simd,
 analyzed live by a real fnet-server, the report folder written. curves.csv is checked against an
-independent binning of the distances read from the server's stores with h5py (so a wrong bin, mean,
-standard error, count, Z or ratio fails), report.md states every finding with holds / does not
+independent binning of the distances read from the server's stores with h5py, averaged over the
+realizations (so a wrong bin, mean, standard error, count, Z or ratio fails), report.md states every finding with holds / does not
 hold, and every figure is a PNG.
 
 usage: reproduce_paper_test.py SOURCE_DIR BUILD_DIR WORK_DIR"""
@@ -45,7 +45,8 @@ COLUMN = {m: k for k, m in enumerate(METRICS)}
 
 
 def store_samples(ensemble):
-    """(rho, z, twelve distances) of every frame with a previous frame, over the ensemble's stores."""
+    """(rho, z, twelve distances, store name) of every frame with a previous frame, over the
+    ensemble's stores (one per realization)."""
     rows = []
     for name in sorted(os.listdir(os.path.join(report, "store"))):
         if not name.startswith(ensemble + "-s") or not name.endswith(".h5"):
@@ -55,19 +56,21 @@ def store_samples(ensemble):
             prev, rho, z, d = f["previous"][:n], f["rho"][:n], f["z"][:n], f["distances"][:n]
             for k in range(n):
                 if prev[k] >= 0:
-                    rows.append((rho[k], z[k], d[k]))
+                    rows.append((rho[k], z[k], d[k], name))
     return rows
 
 
 def expected_bins(samples, value):
+    """Per bin: each realization's mean of rho, value and z first, then their means over the
+    realizations, the standard error of the value across them, and the number of frames."""
     bins = {}
-    for rho, z, d in samples:
-        bins.setdefault(math.floor(rho / BIN_WIDTH), []).append((rho, z, value(d)))
+    for rho, z, d, run in samples:
+        bins.setdefault(math.floor(rho / BIN_WIDTH), {}).setdefault(run, []).append((rho, z, value(d)))
     out = {}
-    for b, members in bins.items():
-        rho, z, v = (np.array(x) for x in zip(*members))
+    for b, runs in bins.items():
+        rho, z, v = (np.array(m) for m in zip(*[np.mean(np.array(members), axis=0) for members in runs.values()]))
         se = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else math.nan
-        out[b] = (float(np.mean(rho)), float(np.mean(v)), se, len(v), float(np.mean(z)))
+        out[b] = (float(np.mean(rho)), float(np.mean(v)), se, sum(map(len, runs.values())), float(np.mean(z)))
     return out
 
 
