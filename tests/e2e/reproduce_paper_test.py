@@ -1,6 +1,7 @@
 """deploy/reproduce-paper.sh end to end on small sizes: two ensembles simulated by fnet-simd,
 analyzed live by a real fnet-server, the report folder written. curves.csv is checked against an
-independent binning of the distances read from the server's stores with h5py (so a wrong bin, mean,
+independent binning of the distances read from the server's stores with h5py, averaged over the
+realizations (so a wrong bin, mean,
 standard error, count, realization count, Z or ratio fails), report.md starts with its provenance,
 states every finding with its verdict and shows every figure (each a PNG with its provenance);
 progress with an ETA and the simulation time were printed. Then the same command with
@@ -72,20 +73,19 @@ def store_samples(ensemble):
     return rows
 
 
-def expected_bins(samples, value, over_runs):
-    """Per bin: (mean rho, mean, standard error, frame pairs, realizations, mean Z). over_runs: the
-    mean and its standard error over the realizations (each run's mean in the bin); else over the
-    frame pairs pooled (a server that does not count realizations)."""
+def expected_bins(samples, value):
+    """Per bin: (rho, mean, standard error, frame pairs, realizations, Z) as ensemble.series defines
+    them: each realization's mean of rho, value and Z in the bin first, then their means over the
+    realizations, and the standard error of the value across them."""
     bins = {}
     for run, rho, z, d in samples:
-        bins.setdefault(math.floor(rho / BIN_WIDTH), []).append((run, rho, z, value(d)))
+        bins.setdefault(math.floor(rho / BIN_WIDTH), {}).setdefault(run, []).append((rho, z, value(d)))
     out = {}
-    for b, members in bins.items():
-        runs, rho, z, v = (np.array(x) for x in zip(*members))
-        if over_runs:
-            v = np.array([v[runs == r].mean() for r in sorted(set(runs))])
+    for b, runs in bins.items():
+        rho, z, v = (np.array(m) for m in zip(*[np.mean(np.array(members), axis=0) for members in runs.values()]))
         se = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else math.nan
-        out[b] = (float(np.mean(rho)), float(np.mean(v)), se, len(members), len(set(runs)), float(np.mean(z)))
+        out[b] = (float(np.mean(rho)), float(np.mean(v)), se, sum(map(len, runs.values())), len(runs),
+                  float(np.mean(z)))
     return out
 
 
@@ -94,9 +94,8 @@ with open(os.path.join(report, "curves.csv"), newline="") as f:
     header = next(reader)
     assert header == ["mu", "force", "dim", "metric", "rho", "mean", "stderr", "n", "n_runs", "z"], header
     rows = list(reader)
-# A server that counts the realizations per bin gives n_runs, and its mean is then over them.
-over_runs = any(r[8] != "" for r in rows)
-assert all((r[8] != "") == over_runs for r in rows)
+# The server counts the realizations per bin, and its mean is over them.
+assert all(r[8] != "" for r in rows), "n_runs in every row"
 names = {"0.5": "paper-mu05-n100-v0.02", "0": "paper-mu0-n100-v0.02"}
 seen = set()
 for mu, ensemble in names.items():
@@ -111,13 +110,13 @@ for mu, ensemble in names.items():
                 col = lambda m: COLUMN[m] * 4 + dim * 2 + force_index
                 if metric.startswith("ratio"):
                     other = "wasserstein1" if metric == "ratio_w1" else "wasserstein2"
-                    num = expected_bins(samples, lambda d: d[col("bottleneck")], over_runs)
-                    den = expected_bins(samples, lambda d: d[col(other)], over_runs)
+                    num = expected_bins(samples, lambda d: d[col("bottleneck")])
+                    den = expected_bins(samples, lambda d: d[col(other)])
                     ratio = lambda a, b: a / b if b else (math.inf if a > 0 else math.nan)
                     want = {b: (num[b][0], ratio(num[b][1], den[b][1]), math.nan, min(num[b][3], den[b][3]),
                                 num[b][4], num[b][5]) for b in num if b in den}
                 else:
-                    want = expected_bins(samples, lambda d, c=col(metric): d[c], over_runs)
+                    want = expected_bins(samples, lambda d, c=col(metric): d[c])
                 assert len(got) == len(want), f"{mu} {force} {dim} {metric}: {len(got)} rows, {len(want)} bins"
                 for r, b in zip(got, sorted(want)):
                     rho, mean, se, n, n_runs, z = want[b]
@@ -128,7 +127,7 @@ for mu, ensemble in names.items():
                     else:
                         assert math.isclose(float(r[5]), mean, rel_tol=1e-9, abs_tol=1e-300), ctx + f" mean {mean}"
                     assert int(r[7]) == n, ctx
-                    if over_runs and not metric.startswith("ratio"):
+                    if not metric.startswith("ratio"):
                         assert int(r[8]) == n_runs, ctx
                     assert math.isclose(float(r[9]), z, rel_tol=1e-12), ctx
                     if math.isnan(se):

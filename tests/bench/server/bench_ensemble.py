@@ -9,8 +9,8 @@ usage: bench_ensemble.py BUILD_DIR [--runs 20] [--frames 100] [--particles 60] [
    percentile of 300 calls on one connection, the answer parsed (the goal: < 50 ms); also against
    rho - rho_J, a ratio curve, and W_q for q = 3 (not stored: computed from the diagrams).
 3. The anchor: numpy computing the same bins from the stores read with h5py (the samples, their
-   bins, mean, standard error, count and mean Z), timed the same way; its bins are checked
-   against the served ones.
+   bins, each run's means, their mean and standard error across the runs, the counts and mean
+   Z), timed the same way; its bins are checked against the served ones.
 """
 import argparse, os, shutil, statistics, subprocess, sys, tempfile, time
 
@@ -45,9 +45,10 @@ def timed(fn, calls):
 
 
 def numpy_bins(paths, column):
-    """The bins of ensemble.series (bin width WIDTH, axis rho) from the stores, with numpy."""
-    rho, z, value = [], [], []
-    for path in paths:
+    """The bins of ensemble.series (bin width WIDTH, axis rho) from the stores, with numpy: per bin
+    each run's means first, then the mean over the runs and its standard error across them."""
+    rho, z, value, run = [], [], [], []
+    for k, path in enumerate(paths):
         with h5py.File(path, "r", libver="latest", swmr=True) as f:
             n = len(f["frame"])
             previous = f["previous"][:n]
@@ -56,15 +57,20 @@ def numpy_bins(paths, column):
             rho.append(f["rho"][:n][keep])
             z.append(f["z"][:n][keep])
             value.append(f["distances"][:n, column][keep])
-    rho, z, value = np.concatenate(rho), np.concatenate(z), np.concatenate(value)
+            run.append(np.full(int(keep.sum()), k))
+    rho, z, value, run = (np.concatenate(x) for x in (rho, z, value, run))
     index = np.floor(rho / WIDTH).astype(np.int64)
-    keys, inverse, counts = np.unique(index, return_inverse=True, return_counts=True)
-    mean = np.bincount(inverse, value) / counts
-    squares = np.bincount(inverse, (value - mean[inverse]) ** 2)
+    pairs, pair_of, frames = np.unique(np.column_stack([index, run]), axis=0, return_inverse=True,
+                                       return_counts=True)
+    pair_of = pair_of.ravel()
+    run_means = [np.bincount(pair_of, x) / frames for x in (rho, z, value)]
+    keys, bin_of, runs = np.unique(pairs[:, 0], return_inverse=True, return_counts=True)
+    m_rho, m_z, mean = (np.bincount(bin_of, m) / runs for m in run_means)
+    squares = np.bincount(bin_of, (run_means[2] - mean[bin_of]) ** 2)
     with np.errstate(invalid="ignore", divide="ignore"):
-        stderr = np.where(counts >= 2, np.sqrt(squares / (counts - 1)) / np.sqrt(counts), np.nan)
-    return {"rho_lo": keys * WIDTH, "rho": np.bincount(inverse, rho) / counts, "mean": mean, "stderr": stderr,
-            "n": counts, "z": np.bincount(inverse, z) / counts}
+        stderr = np.where(runs >= 2, np.sqrt(squares / (runs - 1)) / np.sqrt(runs), np.nan)
+    return {"rho_lo": keys * WIDTH, "rho": m_rho, "mean": mean, "stderr": stderr, "n_runs": runs,
+            "n": np.bincount(bin_of, frames).astype(np.int64), "z": m_z}
 
 
 server = None
@@ -93,7 +99,7 @@ try:
     paths = [os.path.join(data, run + ".h5") for run in ens["runs"]]
     anchor = timed(lambda: numpy_bins(paths, 2), 30)
     served, expected = rpc.call("ensemble.series", cases[0][1]), numpy_bins(paths, 2)
-    assert served["n"] == expected["n"].tolist(), "the bins differ"
+    assert served["n"] == expected["n"].tolist() and served["n_runs"] == expected["n_runs"].tolist(), "the bins differ"
     worst = max(float(np.max(np.abs(np.array(served[k], dtype=float) - expected[k]))) for k in ("rho_lo", "rho", "mean", "z"))
 
     print(f"ensemble.series over {a.runs} runs x {a.frames} frames ({samples} samples, {len(served['n'])} bins "
