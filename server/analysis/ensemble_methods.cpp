@@ -317,6 +317,11 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
         [weak = std::weak_ptr<EnsembleSubscriptions>(self)](std::uint64_t id) {
           if (const auto s = weak.lock()) s->forget(id);
         });
+    // A realization announced after its last frame was committed (its announcement and its frames
+    // travel on different topics) changes the curve although no commit follows.
+    ctx.registry.on_announcement([weak = std::weak_ptr<EnsembleSubscriptions>(self)](const RunInfo& info) {
+      if (const auto s = weak.lock()) s->mark_ensemble(info.ensemble);
+    });
     return self;
   }
   explicit EnsembleSubscriptions(ApiContext& ctx) : ctx_(ctx) {}
@@ -391,6 +396,18 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
   void forget(std::uint64_t id) {
     std::lock_guard lock(mutex_);
     subscriptions_.erase(id);
+  }
+
+  // Under the registry's lock: marks every subscription to `ensemble`'s curve.
+  void mark_ensemble(const std::string& ensemble) {
+    if (ensemble.empty()) return;
+    std::vector<std::uint64_t> ids;
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& [id, sub] : subscriptions_)
+        if (sub->request.ensemble == ensemble) ids.push_back(id);
+    }
+    for (const std::uint64_t id : ids) mark(id);
   }
 
   // Under the registry's lock: only queues the id (once until it is served).

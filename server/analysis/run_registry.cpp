@@ -100,6 +100,12 @@ void Registry::on_info(const RunInfo& info) {
     } catch (const std::exception& e) {
       store_error_locked(run, e);
     }
+  if (announcement_listener_) announcement_listener_(info);
+}
+
+void Registry::on_announcement(std::function<void(const RunInfo&)> listener) {
+  std::lock_guard lock(mutex_);
+  announcement_listener_ = std::move(listener);
 }
 
 void Registry::on_malformed(const std::string& reason) {

@@ -87,6 +87,10 @@ class Registry {
   Adopted adopt_new_stores();
 
   void on_info(const RunInfo& info);
+  // Called under the registry's lock with each new announcement of a run: from then on the run
+  // belongs to its ensemble, with the frames it had committed before. One listener (the ensemble
+  // subscriptions, which must then recompute even when the run commits nothing more).
+  void on_announcement(std::function<void(const RunInfo&)> listener);
   void on_frame(RunFrame frame);
   void on_malformed(const std::string& reason);
   // Skips frames missing for longer than the gap timeout; call periodically.
@@ -164,6 +168,7 @@ class Registry {
   // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
   // runs it adopts there.
   std::vector<std::string> load_locked(std::vector<std::string>* only_new);
+  std::function<void(const RunInfo&)> announcement_listener_;
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
   std::map<std::uint64_t, Subscription> subscriptions_;
