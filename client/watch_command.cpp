@@ -203,7 +203,9 @@ int watch_command(const Endpoint& at, const std::vector<std::string>& args) {
           state.add(watch_point_from_json(n->at("params")), seconds_now());
           state.status.clear();
           show();
-        } else if (!state.complete && std::chrono::steady_clock::now() - polled > 2s) {
+        }
+        // Every 2 s, also while frames keep arriving: rho_J, the plan and the lag change with them.
+        if (!state.complete && std::chrono::steady_clock::now() - polled > 2s) {
           update_from_summary(state, rpc.call("run.get", {{"run", state.run}}));
           const json lag = rpc.call("server.status").at("lag");
           state.server_in_flight = lag.at("frames_in_flight").get<std::size_t>();
