@@ -380,8 +380,8 @@ TEST_F(Fnetctl, HelpListsEveryDistanceOptionAndEveryExitCode) {
       o.out.substr(o.out.find("  distance "), o.out.find("  status ") - o.out.find("  distance "));
   EXPECT_THAT(distance, AllOf(HasSubstr("--essential"), HasSubstr("--delta"), HasSubstr("--other-run"),
                               HasSubstr("--dim"), HasSubstr("--force"), HasSubstr("--q")));
-  // README lists the same exit codes as --help, 1 included.
-  std::ifstream readme(FNET_SOURCE_DIR "/README.md");
+  // deploy/README.md lists the same exit codes as --help, 1 included.
+  std::ifstream readme(FNET_SOURCE_DIR "/deploy/README.md");
   const std::string text{std::istreambuf_iterator<char>(readme), {}};
   const auto at = text.find("**fnetctl** exit codes");
   ASSERT_NE(at, std::string::npos);
