@@ -12,7 +12,6 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -363,18 +362,25 @@ def test_report_starts_with_its_provenance_and_shows_its_figures(report):
     assert not [p for p in os.listdir(report) if p.startswith(".")]  # no staging folder left
 
 
-def test_ctrl_c_while_rendering_leaves_the_folder_as_it_was(server, report):
-    before = {p: p.read_bytes() for p in report.rglob("*") if p.is_file()}
-    p = subprocess.Popen(report_command(server, report), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+def interrupt_while_rendering(server, out, staging):
+    """Starts the report into `out`, sends SIGINT once a figure is in a staging folder matching the
+    glob `staging` (a Path pattern), and returns (process, stdout, stderr)."""
+    p = subprocess.Popen(report_command(server, out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          env=environment(), preexec_fn=interruptible)
     deadline = time.monotonic() + 240
     staged = []
     while not staged and p.poll() is None and time.monotonic() < deadline:
-        staged = [f for d in report.glob(".paper-report-*") for f in d.glob("*.png")]
+        staged = [f for d in staging.parent.glob(staging.name) for f in d.glob("*.png")]
         time.sleep(0.005)
     assert staged, "the report was not caught while rendering its figures"
     p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=120)
+    out_text, err = p.communicate(timeout=120)
+    return p, out_text, err
+
+
+def test_ctrl_c_while_rendering_leaves_the_folder_as_it_was(server, report):
+    before = {p: p.read_bytes() for p in report.rglob("*") if p.is_file()}
+    p, out, err = interrupt_while_rendering(server, report, report / ".paper-report-*")
     assert p.returncode == 130, (out, err)
     assert "Traceback" not in err and err.strip().count("\n") == 0, err
     assert "interrupted" in err
@@ -384,17 +390,7 @@ def test_ctrl_c_while_rendering_leaves_the_folder_as_it_was(server, report):
 
 
 def test_ctrl_c_into_a_new_folder_leaves_none(server, tmp_path):
-    out = tmp_path / "new-report"
-    p = subprocess.Popen(report_command(server, out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=environment(), preexec_fn=interruptible)
-    deadline = time.monotonic() + 240
-    staged = []
-    while not staged and p.poll() is None and time.monotonic() < deadline:
-        staged = [f for d in tmp_path.glob(".new-report-*") for f in d.glob("*.png")]
-        time.sleep(0.005)
-    assert staged, "the report was not caught while rendering its figures"
-    p.send_signal(signal.SIGINT)
-    _, err = p.communicate(timeout=120)
+    p, _, err = interrupt_while_rendering(server, tmp_path / "new-report", tmp_path / ".new-report-*")
     assert p.returncode == 130 and "Traceback" not in err, err
     assert os.listdir(tmp_path) == []
 
