@@ -7,7 +7,7 @@
 # server's stores) and BIN_DIR (build: where the programs were built).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=${BIN_DIR:-build}
+build=${BIN_DIR:-build}
 particles=${PARTICLES:-400}
 speed=${SPEED:-5e-4}
 frames=${FRAMES:-60}
@@ -30,7 +30,7 @@ fail() {
 
 # Talk to the port only once our own server said it listens there: if the port is taken, another
 # process (perhaps another fnet-server with other data) would answer and the demo would lie.
-"$bin/server/analysis/fnet-server" --data-dir "$data" --port "$port" --domain "$domain" > "$data/server.log" 2>&1 &
+"$build/bin/fnet-server" --data-dir "$data" --port "$port" --domain "$domain" > "$data/server.log" 2>&1 &
 server_pid=$!
 pids+=("$server_pid")
 for _ in $(seq 300); do
@@ -46,24 +46,24 @@ echo "fnet-server: $(grep listening "$data/server.log")"
 
 # The box is sized so that the disks start at rho 0.63 (fnet-simd's --rho-initial), as the paper's.
 echo "fnet-simd: $particles disks, wall speed $speed d/tau_c, $frames frames, run $run_id"
-"$bin/server/sim/fnet-simd" --particles "$particles" --compression-speed "$speed" --frames "$frames" \
+"$build/bin/fnet-simd" --particles "$particles" --compression-speed "$speed" --frames "$frames" \
   --run-id "$run_id" --domain "$domain" --out "$data/$run_id.run.h5" --quiet > "$data/simd.log" 2>&1 &
 simd_pid=$!
 pids+=("$simd_pid")
 
 # Wait for the run to appear, then watch it live until its last frame.
 for _ in $(seq 600); do
-  "$bin/client/fnetctl" --port "$port" runs 2>/dev/null | grep -q "$run_id" && break
+  "$build/bin/fnetctl" --port "$port" runs 2>/dev/null | grep -q "$run_id" && break
   kill -0 "$server_pid" 2>/dev/null || fail "fnet-server stopped (see $data/server.log)"
   kill -0 "$simd_pid" 2>/dev/null || { wait "$simd_pid" && break || fail "fnet-simd failed (see $data/simd.log)"; }
   sleep 0.2
 done
 if [ -t 1 ]; then watch_mode=(); else watch_mode=(--plain); fi
-"$bin/client/fnetctl" --port "$port" watch --run "$run_id" --until-complete "${watch_mode[@]}"
+"$build/bin/fnetctl" --port "$port" watch --run "$run_id" --until-complete "${watch_mode[@]}"
 
 echo
 echo "== fnetctl query --metric wasserstein2 --run $run_id (PD0, normal forces) =="
-"$bin/client/fnetctl" --port "$port" query --metric wasserstein2 --run "$run_id"
+"$build/bin/fnetctl" --port "$port" query --metric wasserstein2 --run "$run_id"
 kill -0 "$server_pid" 2>/dev/null || fail "fnet-server stopped during the demo (see $data/server.log)"
 for f in "$data/$run_id.h5" "$data/$run_id.run.h5"; do [ -f "$f" ] || fail "$f was not written"; done
 echo

@@ -32,7 +32,7 @@ bin_width=${BIN_WIDTH:-0.005}
 report=${REPORT_DIR:-paper-report}
 port=${PORT:-7717}
 domain=${DOMAIN_ID:-7}
-bin=${BIN_DIR:-build}
+build=${BIN_DIR:-build}
 start=${START:-quiescent}
 python=/usr/bin/python3
 export CYCLONEDDS_URI="file://$PWD/deploy/cyclonedds-loopback.xml"
@@ -50,9 +50,9 @@ case $start in
   *) fail "START must be quiescent or fixed400 (got '$start')" ;;
 esac
 
-if [ ! -x "$bin/server/analysis/fnet-server" ] || [ ! -x "$bin/server/sim/fnet-simd" ]; then
-  echo "== set-up and build (fnet binaries not found in $bin)"
-  [ "$bin" = build ] || fail "no fnet binaries in BIN_DIR=$bin: build them there first"
+if [ ! -x "$build/bin/fnet-server" ] || [ ! -x "$build/bin/fnet-simd" ]; then
+  echo "== set-up and build (fnet binaries not found in $build)"
+  [ "$build" = build ] || fail "no fnet binaries in BIN_DIR=$build: build them there first"
   bash deploy/setup.sh
   bash deploy/build.sh -DFNET_BUILD_TESTS=OFF
 fi
@@ -68,7 +68,7 @@ cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 
 trap cleanup EXIT
 trap 'echo; echo "reproduce-paper: interrupted; the same command resumes every realization" >&2; exit 130' INT TERM
 
-"$bin/server/analysis/fnet-server" --data-dir "$report/store" --port "$port" --domain "$domain" \
+"$build/bin/fnet-server" --data-dir "$report/store" --port "$port" --domain "$domain" \
   > "$report/server.log" 2>&1 &
 server_pid=$!
 pids+=("$server_pid")
@@ -88,7 +88,7 @@ total=$((${#mus[@]} * realizations * frames))
 
 # The frames fnet-server has analyzed of the given ensembles, summed (ensembles.list).
 analyzed() {
-  "$bin/client/fnetctl" --port "$port" ensembles --format csv 2>/dev/null |
+  "$build/bin/fnetctl" --port "$port" ensembles --format csv 2>/dev/null |
     awk -F, -v list="$*" 'BEGIN { n = split(list, e, " "); for (i = 1; i <= n; i++) want[e[i]] = 1 }
                           ($1 in want) { sum += $3 } END { print sum + 0 }'
 }
@@ -121,7 +121,7 @@ for k in "${!mus[@]}"; do
   echo "== ensemble $name: mu = $mu, $realizations realizations of $particles disks, v_c = $speed, $frames frames," \
     "$start start, $jobs at a time"
   t0=$(date +%s)
-  "$bin/server/sim/fnet-simd" --ensemble "$name" --seeds "1-$realizations" --jobs "$jobs" --mu "$mu" \
+  "$build/bin/fnet-simd" --ensemble "$name" --seeds "1-$realizations" --jobs "$jobs" --mu "$mu" \
     --particles "$particles" --compression-speed "$speed" --frames "$frames" --domain "$domain" \
     "${start_flags[@]}" --out "$report/runs/{run}.run.h5" --checkpoint "$report/runs/{run}.fnetsim" --quiet &
   simd_pid=$!
@@ -177,7 +177,7 @@ trap report_interrupted INT TERM
 args=()
 for e in "${ensembles[@]}"; do args+=(--ensemble "$e"); done
 # The other start of the same setting, when an earlier command left its ensembles in this folder.
-listed=$("$bin/client/fnetctl" --port "$port" ensembles --format csv | cut -d, -f1)
+listed=$("$build/bin/fnetctl" --port "$port" ensembles --format csv | cut -d, -f1)
 for k in "${!mus[@]}"; do
   other="paper-mu${mus[$k]/./}-n$particles-v$speed$other_suffix"
   if grep -qx -- "$other" <<< "$listed"; then

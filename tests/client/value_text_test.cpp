@@ -1,6 +1,6 @@
 // How fnetctl prints numbers: exact text for CSV (reads back to the same double), `inf` for an
 // infinite distance, and a dash (table) or nothing (CSV) when there is no previous frame.
-#include "client/value_text.hpp"
+#include "client/fnetctl/value_text.hpp"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,7 +1,7 @@
 // The watch screen as a pure function of what watch knows: frames counted as fnet-simd counts
 // them, a complete run marked, every series as a log-scaled sparkline with its scale, rho_J marked,
 // the ETA from the frames' arrivals, and the waiting states.
-#include "client/watch_view.hpp"
+#include "client/fnetctl/watch_view.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

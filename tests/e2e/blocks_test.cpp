@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 #include "common/analysis/explain.hpp"
 #include "common/codec/explain_json.hpp"
 #include "tests/e2e/process.hpp"

@@ -14,7 +14,7 @@ trap cleanup EXIT
 export CYCLONEDDS_URI="file://$src/deploy/cyclonedds-loopback.xml"
 domain=53
 
-"$build/server/analysis/fnet-server" --data-dir "$tmp/other" --port 0 --domain "$domain" > "$tmp/other.log" 2>&1 &
+"$build/bin/fnet-server" --data-dir "$tmp/other" --port 0 --domain "$domain" > "$tmp/other.log" 2>&1 &
 occupant=$!
 port=
 for _ in $(seq 300); do

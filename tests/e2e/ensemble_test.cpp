@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 #include "tests/e2e/line_connection.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/e2e/service_process.hpp"

@@ -15,7 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -51,11 +51,11 @@ check(licence.startswith("MIT License") and "Permission is hereby granted, free 
       "LICENSE holds the MIT licence")
 
 programs = {
-    "fnet-simd": [os.path.join(build, "server/sim/fnet-simd")],
-    "fnet-server": [os.path.join(build, "server/analysis/fnet-server")],
-    "fnet-analyze": [os.path.join(build, "server/analysis/fnet-analyze")],
-    "fnet-analyze-io": [os.path.join(build, "server/analysis/fnet-analyze-io")],
-    "fnetctl": [os.path.join(build, "client/fnetctl")],
+    "fnet-simd": [os.path.join(build, "bin/fnet-simd")],
+    "fnet-server": [os.path.join(build, "bin/fnet-server")],
+    "fnet-analyze": [os.path.join(build, "bin/fnet-analyze")],
+    "fnet-analyze-io": [os.path.join(build, "bin/fnet-analyze-io")],
+    "fnetctl": [os.path.join(build, "bin/fnetctl")],
     "fnet": ["/usr/bin/python3", "-m", "fnet"],
 }
 env = dict(os.environ, PYTHONPATH=os.path.join(source, "client", "python"), PYTHONDONTWRITEBYTECODE="1")

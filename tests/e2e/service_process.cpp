@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 
 namespace fnet::e2e {
 

@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 #include "common/analysis/frame_analysis.hpp"
 #include "common/store/analysis_store.hpp"
 #include "tests/e2e/line_connection.hpp"

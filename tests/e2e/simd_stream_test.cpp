@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/rpc_client.hpp"
+#include "client/rpc/rpc_client.hpp"
 #include "common/store/analysis_store.hpp"
 #include "common/store/run_file.hpp"
 #include "common/transport/frame_transport.hpp"

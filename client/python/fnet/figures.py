@@ -110,7 +110,7 @@ def free_interior(frame, walls):
 
 def wall_disks(frame, walls):
     """The wall particles at `frame`, an (n, 3) array of x, y, r in d, placed as fnet-simd places
-    them (server/sim/walls.cpp): four rows of touching disks of the wall diameter whose centres
+    them (server/dem/walls.cpp): four rows of touching disks of the wall diameter whose centres
     form a square ring half a diameter outside the free interior, bottom, right, top, left, each
     row moved inward by the walls' offset (free_interior)."""
     box, dw = walls["box"], walls["wall_diameter"]

@@ -11,9 +11,9 @@ class Binaries:
 
     def __init__(self, build):
         build = os.path.abspath(build)
-        self.simd = os.path.join(build, "server/sim/fnet-simd")
-        self.server = os.path.join(build, "server/analysis/fnet-server")
-        self.analyze = os.path.join(build, "server/analysis/fnet-analyze")
+        self.simd = os.path.join(build, "bin/fnet-simd")
+        self.server = os.path.join(build, "bin/fnet-server")
+        self.analyze = os.path.join(build, "bin/fnet-analyze")
 
 
 class Rpc:

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "server/sim/protocol.hpp"
-#include "server/sim/simulation.hpp"
-#include "server/sim/workers.hpp"
-#include "tests/server/sim/elastic_gas.hpp"
+#include "server/dem/protocol.hpp"
+#include "server/dem/simulation.hpp"
+#include "server/dem/workers.hpp"
+#include "tests/server/dem/elastic_gas.hpp"
 
 using namespace fnet::sim;
 using Clock = std::chrono::steady_clock;

@@ -2,7 +2,7 @@
 """fnet-simd against LAMMPS on the same system and protocol, one run each, side by side.
 
 fnet-simd runs the protocol (relaxation, compression from rho 0.63 to 0.90) and writes its start as
-a LAMMPS data file; LAMMPS runs tests/server/sim/lammps/in.compress from it (gran/hooke/history, wall
+a LAMMPS data file; LAMMPS runs tests/server/dem/lammps/in.compress from it (gran/hooke/history, wall
 particles moved with fix move linear, the same damped relaxation to the same translational-energy
 target). Prints steps/s and particle-steps/s of both (all steps, relaxation included: LAMMPS's "Loop time" lines, fnet-simd's
 summary line) and the ratio; then the projected wall time of the paper's full protocol
@@ -60,7 +60,7 @@ lvars = {"data": data, "mu": p["mu"], "kn": p["kn"], "kt": d["kt"], "gamma": d["
          "relax_damp": d["tau_c"] / p["relax_damping"] if p["relax_damping"] > 0 else 1e300,
          "relax_max": int(p["relax_max_time"] * p["dt_divisor"]), "steps": steps, "every": max(1, steps // 100),
          "ngrains": a.particles, "out": os.path.join(work, "lammps_pairs.dump")}
-cmd = [a.lmp, "-in", os.path.join(here, "..", "..", "server", "sim", "lammps", "in.compress"), "-log", os.path.join(work, "log.lammps"),
+cmd = [a.lmp, "-in", os.path.join(here, "..", "..", "server", "dem", "lammps", "in.compress"), "-log", os.path.join(work, "log.lammps"),
        "-screen", "none"]
 for k, v in lvars.items():
     cmd += ["-var", k, repr(v) if isinstance(v, float) else str(v)]

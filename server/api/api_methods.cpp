@@ -1,0 +1,340 @@
+#include "server/api/api_methods.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "common/analysis/frame_analysis.hpp"
+#include "common/analysis/metric_vocabulary.hpp"
+#include "common/build_info/build_info.hpp"
+#include "common/codec/diagram_json.hpp"
+#include "common/codec/distance_json.hpp"
+#include "common/codec/explain_json.hpp"
+#include "common/codec/run_info_json.hpp"
+#include "common/store/analysis_store.hpp"
+#include "server/api/api_params.hpp"
+#include "server/api/block_methods.hpp"
+#include "server/api/connection_subscriptions.hpp"
+#include "server/api/ensemble_methods.hpp"
+#include "server/api/series_columns.hpp"
+
+namespace fnet::server {
+namespace {
+
+using json = nlohmann::json;
+using rpc::Error;
+
+constexpr std::uint32_t kMaxExplainTerms = 1000;
+
+// ---- runs ------------------------------------------------------------------------------------
+
+json summary_json(const RunSummary& s) {
+  json out = {{"run", s.run_id},
+              {"frames", s.frames},
+              {"rejected", s.rejected},
+              {"pending", s.pending},
+              {"duplicates", s.duplicates},
+              {"skipped", s.skipped},
+              {"first_frame", nullptr},
+              {"last_frame", nullptr},
+              {"rho", nullptr},
+              {"z", nullptr},
+              {"rho_j", s.rho_j ? json(*s.rho_j) : json(nullptr)},
+              {"seconds_since_last_frame", s.seconds_since_last_frame},
+              {"last_activity", s.last_activity ? json(*s.last_activity) : json(nullptr)},
+              {"announced", s.has_info}};
+  if (s.last_frame) {
+    out["first_frame"] = *s.first_frame;
+    out["last_frame"] = *s.last_frame;
+    out["rho"] = s.last_rho;
+    out["z"] = s.last_z;
+  }
+  if (s.has_info) out["planned_frames"] = s.info.frames;
+  return out;
+}
+
+json point_json(const SeriesPoint& p) {
+  json distances = json::object();
+  for (const Metric metric : kMetrics)
+    for (int dim = 0; dim < 2; ++dim)
+      for (const ForceKind force : kForces)
+        distances[series_key(metric, dim, force)] = p.previous ? json(p.distances(metric, dim, force)) : json(nullptr);
+  return {{"run", p.run_id},
+          {"frame", p.header.index},
+          {"step", p.header.step},
+          {"time", p.header.time},
+          {"rho", p.header.rho},
+          {"z", p.header.z},
+          {"previous", p.previous ? json(*p.previous) : json(nullptr)},
+          {"distances", distances}};
+}
+
+// ---- methods -----------------------------------------------------------------------------------
+// Each checks every parameter before it looks the run up, so a malformed request is reported as such.
+
+json runs_list(const Registry& registry) {
+  json runs = json::array();
+  for (const RunSummary& s : registry.runs()) runs.push_back(summary_json(s));
+  return {{"runs", runs}};
+}
+
+json run_get(const Registry& registry, const json& params) {
+  const std::string run = resolve_run(registry, params);
+  const auto s = registry.run(run);
+  if (!s) unknown_run(run);
+  json out = summary_json(*s);
+  out["parameters"] = s->has_info ? to_json(s->info) : json(nullptr);
+  json rejected = json::array();
+  for (const RejectedFrame& r : registry.rejected(run)) rejected.push_back({{"frame", r.index}, {"reason", r.reason}});
+  out["rejected_frames"] = rejected;
+  return out;
+}
+
+json series_get(const Registry& registry, const json& params) {
+  const MetricChoice metric = get_metric(params);
+  const int dim = get_dim(params);
+  const ForceKind force = get_force(params);
+  const EssentialConvention essential = get_essential(params);
+  const FrameRange range = get_frame_range(params);
+  const std::string run = resolve_run(registry, params);
+  const auto frames = registry.frames(run);
+  if (!frames) unknown_run(run);
+
+  json out = describe(metric, dim, force, essential);
+  out["run"] = run;
+  SeriesColumns columns;
+  std::shared_ptr<const AnalyzedFrame> before;  // the frame committed before the current one
+  for (const auto& f : *frames) {
+    const auto prev_frame = before;
+    before = f;
+    if (!range.contains(f->header.index)) continue;
+    if (!f->previous || !prev_frame) {
+      columns.add(*f, nullptr, false);
+      continue;
+    }
+    if (metric.stored && essential == EssentialConvention::floor) {
+      columns.add(*f, f->distances(*metric.stored, dim, force), false);
+      continue;
+    }
+    const DistanceResult r = choice_distance(diagram_of(prev_frame->diagrams, force, dim),
+                                             diagram_of(f->diagrams, force, dim), metric, essential);
+    columns.add(*f, r.infinite ? json(nullptr) : json(r.value), r.infinite);
+  }
+  columns.put(out);
+  return out;
+}
+
+json diagram_get(const Registry& registry, const json& params) {
+  const std::uint32_t index = require_index(params, "frame");
+  const int dim = get_dim(params);
+  const ForceKind force = get_force(params);
+  const std::string run = resolve_run(registry, params);
+  const auto f = registry.frame(run, index);
+  if (!f) unknown_frame(run, index);
+  const FrameDiagrams& d = f->diagrams[force];
+  return {{"run", run},
+          {"frame", index},
+          {"dim", dim},
+          {"force", to_string(force)},
+          {"rho", f->header.rho},
+          {"z", f->header.z},
+          {"vertices", d.vertices},
+          {"edges", d.edges},
+          {"triangles", d.triangles},
+          {"points", to_json(dim == 0 ? d.pd0 : d.pd1)}};
+}
+
+json distance_get(const Registry& registry, const json& params) {
+  const std::uint32_t frame_a = require_index(params, "frame");
+  const std::uint32_t frame_b = require_index(params, "other_frame");
+  const MetricChoice metric = get_metric(params);
+  const int dim = get_dim(params);
+  const ForceKind force = get_force(params);
+  const EssentialConvention essential = get_essential(params);
+  const double delta = get_number(params, "delta").value_or(0);
+  if (!(delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
+  const auto explain_terms = get_index(params, "explain");
+  if (explain_terms && (*explain_terms < 1 || *explain_terms > kMaxExplainTerms))
+    invalid("explain", "parameter 'explain' must be an integer from 1 to " + std::to_string(kMaxExplainTerms) +
+                           " (the number of terms), got " + std::to_string(*explain_terms));
+  const std::string run_a = resolve_run(registry, params, "run");
+  const std::string run_b = find(params, "other_run") ? resolve_run(registry, params, "other_run") : run_a;
+  const auto a = registry.frame(run_a, frame_a), b = registry.frame(run_b, frame_b);
+  if (!a) unknown_frame(run_a, frame_a);
+  if (!b) unknown_frame(run_b, frame_b);
+  const auto start = std::chrono::steady_clock::now();
+  const DistanceResult r = choice_distance(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
+                                           metric, essential, delta);
+  json out = to_json(r);
+  out.update(describe(metric, dim, force, essential));
+  out["run"] = run_a;
+  out["frame"] = frame_a;
+  out["other_run"] = run_b;
+  out["other_frame"] = frame_b;
+  if (explain_terms) {
+    // The pairs are not stored with the diagrams: both networks are read back and their diagrams
+    // recomputed with the simplices that pair each point.
+    const Frame network_a = stored_network(registry, run_a, frame_a),
+                network_b = stored_network(registry, run_b, frame_b);
+    out["explain"] = explain_terms_json(
+        explain(network_a, network_b, {metric.distance(), dim, force, essential, *explain_terms}).terms);
+  }
+  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+json server_status(const ApiContext& ctx) {
+  const Registry& r = ctx.registry;
+  const Counters c = r.counters();
+  json rejections = json::array();
+  for (const std::string& s : r.recent_rejections()) rejections.push_back(s);
+  json runs = json::array();
+  for (const RunSummary& s : r.runs()) runs.push_back(summary_json(s));
+  const BuildInfo b = build_info();
+  return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
+          {"build",
+           {{"version", b.version},
+            {"commit", b.commit},
+            {"store_schema", kStoreSchema},
+            {"convention", kStoreConvention},
+            {"api", "json-rpc-2.0 (proto/api.md)"}}},
+          {"ingest", ctx.ingest_state()},
+          {"runs", runs},
+          {"frames_per_second", r.frames_per_second()},
+          {"lag", {{"frames_in_flight", r.in_flight()}, {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
+          {"frames",
+           {{"received", c.received},
+            {"analyzed", c.analyzed},
+            {"rejected", c.rejected},
+            {"duplicates", c.duplicates},
+            {"late", c.late},
+            {"skipped", c.skipped},
+            {"malformed", c.malformed}}},
+          {"rejections", rejections},
+          {"connections", ctx.connections()},
+          {"subscriptions", r.subscriptions()}};
+}
+
+// ---- subscriptions: each connection's, released when it closes --------------------------------
+
+class Subscriptions {
+ public:
+  explicit Subscriptions(ApiContext& ctx)
+      : ctx_(ctx),
+        held_(std::make_shared<ConnectionSubscriptions>(ctx.registry, ctx.max_subscriptions_per_connection,
+                                                        "subscription")) {}
+
+  json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    const auto since = get_index(params, "since");
+    const std::string run = get_string(params, "run").value_or("");
+    Registry& registry = ctx_.registry;
+    if (!run.empty() && !registry.has_run(run)) unknown_run(registry, run);
+    held_->check_room(*session);
+    std::weak_ptr<rpc::Session> weak = session;
+    const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
+      const auto s = weak.lock();
+      if (!s) return false;
+      json params_out = point_json(p);
+      params_out["subscription"] = subscription;
+      return s->send(rpc::notification("series.point", std::move(params_out)));
+    });
+    if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
+    held_->add(session, id);
+    return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
+  }
+
+  json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    const std::uint32_t id = require_index(params, "subscription");
+    held_->remove(*session, id);
+    return {{"unsubscribed", id}};
+  }
+
+ private:
+  ApiContext& ctx_;
+  const std::shared_ptr<ConnectionSubscriptions> held_;
+};
+
+// ---- the method table: what each method accepts drives the unknown-parameter check -------------
+
+MethodTable method_table(ApiContext& ctx) {
+  Registry& registry = ctx.registry;
+  const auto subscriptions = std::make_shared<Subscriptions>(ctx);
+  const auto plain = [](auto fn) {
+    return [fn](const json& params, const std::shared_ptr<rpc::Session>&) { return fn(params); };
+  };
+  MethodTable table{
+      {"runs.list", {{}, plain([&registry](const json&) { return runs_list(registry); })}},
+      {"run.get", {{"run"}, plain([&registry](const json& p) { return run_get(registry, p); })}},
+      {"series.get",
+       {{"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"}, plain([&registry](const json& p) {
+          return find(p, "ratio") ? series_ratio_get(registry, p) : series_get(registry, p);
+        })}},
+      {"diagram.get",
+       {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
+      {"distance.get",
+       {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta", "explain"},
+        plain([&registry](const json& p) { return distance_get(registry, p); })}},
+      {"blocks.get",
+       {{"run", "frame", "other_frame", "k", "metric", "q", "dim", "force", "essential"},
+        plain([&registry](const json& p) { return blocks_get(registry, p); })}},
+      {"series.subscribe",
+       {{"run", "since"},
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->subscribe(p, s);
+        }}},
+      {"series.unsubscribe",
+       {{"subscription"},
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->unsubscribe(p, s);
+        }}},
+      {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
+      {"server.rescan", {{}, plain([&registry](const json&) {
+                           const Registry::Adopted a = registry.adopt_new_stores();
+                           return json{{"adopted", a.runs}, {"problems", a.problems}};
+                         })}},
+  };
+  table.merge(ensemble_methods(ctx));
+  return table;
+}
+
+// The params as an object, every name one the method accepts: a typo ("dimension") is an error,
+// not a silently applied default.
+json checked_params(const std::string& method, const Method& m, const json& params) {
+  if (params.is_array()) {
+    if (!params.empty())
+      throw Error(rpc::kInvalidParams, "params of '" + method + "' must be an object of named parameters");
+    return json::object();
+  }
+  for (const auto& [name, value] : params.items()) {
+    if (std::find(m.params.begin(), m.params.end(), name) != m.params.end()) continue;
+    json accepted = json::array();
+    std::string list;
+    for (const std::string_view p : m.params) {
+      accepted.push_back(p);
+      list += (list.empty() ? "" : ", ") + std::string(p);
+    }
+    throw Error(rpc::kInvalidParams,
+                "unknown parameter '" + name + "' for method '" + method + "' (" +
+                    (list.empty() ? std::string("it takes none") : "accepted: " + list) + ")",
+                {{"parameter", name}, {"accepted", accepted}});
+  }
+  return params;
+}
+
+}  // namespace
+
+rpc::Handler make_api(ApiContext& ctx) {
+  auto table = std::make_shared<const MethodTable>(method_table(ctx));
+  return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Session>& session) -> json {
+    const auto it = table->find(method);
+    if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
+    return it->second.run(checked_params(method, it->second, params), session);
+  };
+}
+
+}  // namespace fnet::server

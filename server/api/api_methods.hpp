@@ -1,0 +1,36 @@
+// The JSON-RPC methods of fnet-server (proto/api.md is their reference).
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "server/registry/run_registry.hpp"
+#include "server/rpc/rpc_server.hpp"
+
+namespace fnet::server {
+
+struct ApiContext {
+  Registry& registry;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  std::size_t max_subscriptions_per_connection = 16;
+  std::function<std::size_t()> connections = [] { return std::size_t{0}; };
+  // "running", or "stopped: <reason>" when the DDS ingest ended on an error.
+  std::function<std::string()> ingest_state = [] { return std::string("not started"); };
+};
+
+// One method: every parameter it accepts (any other is an error, before it runs) and what it does.
+struct Method {
+  std::vector<std::string_view> params;
+  std::function<nlohmann::json(const nlohmann::json& params, const std::shared_ptr<rpc::Session>& session)> run;
+};
+
+using MethodTable = std::map<std::string, Method, std::less<>>;
+
+rpc::Handler make_api(ApiContext& context);
+
+}  // namespace fnet::server

@@ -1,0 +1,47 @@
+// The parameter helpers of the JSON-RPC methods: every failure names the parameter and what it
+// must be (error -32602, data.parameter), before the method does any work.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "common/analysis/metric_vocabulary.hpp"
+#include "common/distance/essential_convention.hpp"
+#include "common/topology/force_network.hpp"
+#include "proto/json_rpc.hpp"
+#include "server/registry/run_registry.hpp"
+
+namespace fnet::server {
+
+using json = nlohmann::json;
+
+[[noreturn]] void invalid(std::string_view name, const std::string& message);
+[[noreturn]] void wrong_type(std::string_view name, const char* expected, const json& got);
+// A parameter given as null is taken as omitted.
+const json* find(const json& params, std::string_view name);
+std::optional<std::string> get_string(const json& params, std::string_view name);
+std::optional<std::uint32_t> get_index(const json& params, std::string_view name);
+std::uint32_t require_index(const json& params, std::string_view name);
+std::optional<double> get_number(const json& params, std::string_view name);
+int get_dim(const json& params);
+ForceKind get_force(const json& params);
+EssentialConvention get_essential(const json& params);
+MetricChoice get_metric(const json& params);
+json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConvention essential);
+
+[[noreturn]] void unknown_run(const std::string& run);
+// The same error, its message and data.close naming the server's runs closest to `run`.
+[[noreturn]] void unknown_run(const Registry& registry, const std::string& run);
+[[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index);
+// A committed frame's force network read back from the run's store; error -32005 naming the run,
+// the frame and why when the store does not hold it.
+Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index);
+
+// The named run, or the newest one when the parameter is omitted.
+std::string resolve_run(const Registry& registry, const json& params, std::string_view name = "run");
+
+}  // namespace fnet::server

@@ -1,0 +1,531 @@
+#include "server/api/ensemble_methods.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <limits>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "common/analysis/ensemble_curve.hpp"
+#include "common/analysis/jamming.hpp"
+#include "common/analysis/step_series.hpp"
+#include "server/api/api_params.hpp"
+#include "server/api/connection_subscriptions.hpp"
+#include "server/api/series_columns.hpp"
+
+namespace fnet::server {
+namespace {
+
+using json = nlohmann::json;
+using rpc::Error;
+
+constexpr double kDefaultBinWidth = 0.002;
+// rho and rho - rho_J lie within [-1, 1]: a finer width would only make bins of one frame each,
+// and the bin indices must stay far inside 64 bits.
+constexpr double kMinBinWidth = 1e-9;
+constexpr std::uint32_t kMaxBins = 1000000;
+
+enum class CurveAxis { rho, rho_minus_rho_j };
+
+// One ensemble.series request, every parameter checked.
+struct CurveRequest {
+  std::string ensemble, run;             // exactly one is non-empty
+  StepQuery query;                       // the distance binned; with a ratio, its numerator d_B
+  std::optional<StepQuery> denominator;  // with a ratio: d_Wq
+  std::string ratio;                     // "wasserstein1" | "wasserstein2" | empty
+  RhoBinning binning;
+  CurveAxis axis = CurveAxis::rho;
+};
+
+[[noreturn]] void unknown_ensemble(const std::string& ensemble) {
+  throw Error(rpc::kUnknownEnsemble, "unknown ensemble '" + ensemble + "': no announced run belongs to it",
+              {{"ensemble", ensemble}});
+}
+
+// The ratio named by `ratio`, or none; with one the metric is the bottleneck (its numerator).
+std::optional<MetricChoice> get_ratio(const json& params, std::string& name) {
+  const auto ratio = get_string(params, "ratio");
+  if (!ratio) return std::nullopt;
+  if (*ratio != "wasserstein1" && *ratio != "wasserstein2")
+    invalid("ratio",
+            "parameter 'ratio' must be wasserstein1 or wasserstein2 (the ratio d_B / d_Wq), got '" + *ratio + "'");
+  name = *ratio;
+  return parse_metric(*ratio);
+}
+
+// metric, q, dim, force, essential and ratio as series.get takes them.
+std::pair<StepQuery, std::optional<StepQuery>> get_step_query(const json& params, std::string& ratio_name) {
+  const auto denominator = get_ratio(params, ratio_name);
+  StepQuery query;
+  if (denominator) {
+    const auto metric = get_string(params, "metric");
+    if (metric && *metric != "bottleneck")
+      invalid("metric", "parameter 'metric' must be bottleneck (or omitted) with 'ratio': the ratio is d_B / d_W" +
+                            ratio_name.substr(ratio_name.size() - 1) + ", got '" + *metric + "'");
+    if (find(params, "q")) invalid("q", "parameter 'q' is not taken with 'ratio' (d_B / d_W1 or d_B / d_W2)");
+    query.metric = parse_metric("bottleneck");
+  } else {
+    query.metric = get_metric(params);
+  }
+  query.dim = get_dim(params);
+  query.force = get_force(params);
+  query.essential = get_essential(params);
+  if (!denominator) return {query, std::nullopt};
+  StepQuery d = query;
+  d.metric = *denominator;
+  return {query, d};
+}
+
+// Every parameter checked before any run or ensemble is looked up.
+CurveRequest get_curve_request(const Registry& registry, const json& params) {
+  CurveRequest r;
+  const auto ensemble = get_string(params, "ensemble"), run = get_string(params, "run");
+  if (ensemble.has_value() == run.has_value())
+    invalid("ensemble", ensemble ? "give 'ensemble' or 'run', not both"
+                                 : "missing parameter 'ensemble' (or 'run', for one run's curve)");
+  std::tie(r.query, r.denominator) = get_step_query(params, r.ratio);
+  const auto width = get_number(params, "bin_width");
+  const json* bins = find(params, "bins");
+  if (width && bins) invalid("bin_width", "give 'bin_width' or 'bins', not both");
+  if (bins) {
+    if (!bins->is_number_integer()) wrong_type("bins", "an integer >= 1", *bins);
+    const bool fits = bins->is_number_unsigned()
+                          ? bins->get<std::uint64_t>() <= kMaxBins
+                          : bins->get<std::int64_t>() >= 1 && bins->get<std::int64_t>() <= kMaxBins;
+    if (!fits || bins->get<std::int64_t>() < 1)
+      invalid("bins", "parameter 'bins' must be an integer from 1 to " + std::to_string(kMaxBins) + " (got " +
+                          bins->dump() + ")");
+    r.binning.count = bins->get<std::size_t>();
+  } else {
+    r.binning.width = width.value_or(kDefaultBinWidth);
+    if (!(std::isfinite(r.binning.width) && r.binning.width >= kMinBinWidth))
+      invalid("bin_width", "parameter 'bin_width' must be a finite number >= 1e-9 (a width in rho), got " +
+                               json(r.binning.width).dump());
+  }
+  const std::string axis = get_string(params, "axis").value_or("rho");
+  if (axis == "rho_minus_rho_j")
+    r.axis = CurveAxis::rho_minus_rho_j;
+  else if (axis != "rho")
+    invalid("axis", "parameter 'axis' must be rho or rho_minus_rho_j, got '" + axis + "'");
+  if (run) {
+    if (run->empty() || !registry.has_run(*run)) unknown_run(registry, *run);
+    r.run = *run;
+  } else {
+    if (registry.ensemble_members(*ensemble).empty()) unknown_ensemble(*ensemble);
+    r.ensemble = *ensemble;
+  }
+  return r;
+}
+
+// The step values of each member run already computed, so that a subscription computes only the
+// frames committed since its last update (they matter when a distance is not stored).
+struct StepCache {
+  std::map<std::string, std::vector<StepValue>> numerator, denominator;
+};
+
+const std::vector<StepValue>& steps_of(const Registry::MemberRun& member, const StepQuery& query,
+                                       std::map<std::string, std::vector<StepValue>>& cache) {
+  std::vector<StepValue>& steps = cache[member.run_id];
+  // Frames are committed in index order, so a run's values only ever grow at the end.
+  const bool prefix = steps.size() <= member.frames.size() &&
+                      (steps.empty() || member.frames[steps.size() - 1]->header.index == steps.back().index);
+  if (!prefix) steps.clear();
+  append_step_values(member.frames, query, steps.size(), steps);
+  return steps;
+}
+
+struct Curve {
+  std::vector<std::string> runs, runs_without_rho_j;
+  std::vector<CurveBin> bins;
+};
+
+Curve compute_curve(const Registry& registry, const CurveRequest& r, StepCache& cache) {
+  std::vector<Registry::MemberRun> members;
+  if (r.run.empty()) {
+    members = registry.ensemble_members(r.ensemble);
+  } else if (auto frames = registry.frames(r.run)) {
+    members.push_back({r.run, std::move(*frames)});
+  }
+  Curve c;
+  std::vector<CurveSample> numerator, denominator;
+  for (const Registry::MemberRun& m : members) {
+    double shift = 0;
+    if (r.axis == CurveAxis::rho_minus_rho_j) {
+      std::vector<double> rho, z;
+      for (const auto& f : m.frames) {
+        rho.push_back(f->header.rho);
+        z.push_back(f->header.z);
+      }
+      const auto rho_j = jamming_density(rho, z);
+      if (!rho_j) {
+        c.runs_without_rho_j.push_back(m.run_id);
+        continue;
+      }
+      shift = *rho_j;
+    }
+    // A run's index in `runs` (its place in name order) names its samples' realization.
+    const std::size_t run = c.runs.size();
+    c.runs.push_back(m.run_id);
+    const auto add = [&](std::vector<CurveSample>& to, const std::vector<StepValue>& steps) {
+      const std::vector<CurveSample> s = curve_samples(steps, shift, run);
+      to.insert(to.end(), s.begin(), s.end());
+    };
+    add(numerator, steps_of(m, r.query, cache.numerator));
+    if (r.denominator) add(denominator, steps_of(m, *r.denominator, cache.denominator));
+  }
+  c.bins = bin_curve(numerator, r.binning);
+  if (r.denominator) c.bins = ratio_curve(c.bins, bin_curve(denominator, r.binning));
+  return c;
+}
+
+json strings(const std::vector<std::string>& v) {
+  json out = json::array();
+  for (const std::string& s : v) out.push_back(s);
+  return out;
+}
+
+// The bins as equal-length arrays; a mean of +inf is null with infinite[k] true (the key present
+// only when some is), a 0/0 ratio null.
+void put_bins(json& out, const std::vector<CurveBin>& bins) {
+  json lo = json::array(), hi = json::array(), rho = json::array(), mean = json::array(), se = json::array(),
+       n_runs = json::array(), n = json::array(), z = json::array(), infinite = json::array();
+  bool any_infinite = false;
+  for (const CurveBin& b : bins) {
+    lo.push_back(b.rho_lo);
+    hi.push_back(b.rho_hi);
+    rho.push_back(b.mean_rho);
+    const bool inf = std::isinf(b.mean);
+    any_infinite |= inf;
+    mean.push_back(std::isfinite(b.mean) ? json(b.mean) : json(nullptr));
+    infinite.push_back(inf);
+    se.push_back(b.standard_error ? json(*b.standard_error) : json(nullptr));
+    n_runs.push_back(b.runs);
+    n.push_back(b.n);
+    z.push_back(b.mean_z);
+  }
+  out["rho_lo"] = lo;
+  out["rho_hi"] = hi;
+  out["rho"] = rho;
+  out["mean"] = mean;
+  out["stderr"] = se;
+  out["n_runs"] = n_runs;
+  out["n"] = n;
+  out["z"] = z;
+  if (any_infinite) out["infinite"] = infinite;
+}
+
+// What every answer about a curve says it is, and the members it was computed over.
+json curve_head(const CurveRequest& r, const Curve& c) {
+  json out = describe(r.query.metric, r.query.dim, r.query.force, r.query.essential);
+  out["ensemble"] = r.ensemble.empty() ? json(nullptr) : json(r.ensemble);
+  out["run"] = r.run.empty() ? json(nullptr) : json(r.run);
+  out["runs"] = strings(c.runs);
+  out["axis"] = r.axis == CurveAxis::rho ? "rho" : "rho_minus_rho_j";
+  out["ratio"] = r.ratio.empty() ? json(nullptr) : json(r.ratio);
+  if (r.binning.count > 0)
+    out["bins"] = r.binning.count;
+  else
+    out["bin_width"] = r.binning.width;
+  if (r.axis == CurveAxis::rho_minus_rho_j) out["runs_without_rho_j"] = strings(c.runs_without_rho_j);
+  return out;
+}
+
+json curve_json(const CurveRequest& r, const Curve& c) {
+  json out = curve_head(r, c);
+  put_bins(out, c.bins);
+  return out;
+}
+
+json ensemble_series(const Registry& registry, const json& params) {
+  const CurveRequest r = get_curve_request(registry, params);
+  StepCache cache;
+  return curve_json(r, compute_curve(registry, r, cache));
+}
+
+// ---- ensembles.list ---------------------------------------------------------------------------
+
+json ensembles_list(const Registry& registry) {
+  std::map<std::string, std::vector<RunSummary>> by_ensemble;
+  for (RunSummary& s : registry.runs())
+    if (s.has_info && !s.info.ensemble.empty()) by_ensemble[s.info.ensemble].push_back(std::move(s));
+  json out = json::array();
+  for (const auto& [name, members] : by_ensemble) {
+    std::size_t frames = 0;
+    std::vector<double> rho_j;
+    std::optional<StoreTime> last;
+    for (const RunSummary& s : members) {
+      frames += s.frames;
+      if (s.rho_j) rho_j.push_back(*s.rho_j);
+      if (s.last_activity && (!last || *s.last_activity > *last)) last = s.last_activity;
+    }
+    // The setting the members share; null where they differ (realizations of one setting should not).
+    const auto shared = [&](auto field) {
+      const auto first = field(members.front().info);
+      for (const RunSummary& s : members)
+        if (field(s.info) != first) return json(nullptr);
+      return json(first);
+    };
+    json rj = {{"mean", nullptr}, {"standard_error", nullptr}, {"n", rho_j.size()}};
+    if (!rho_j.empty()) {
+      double sum = 0;
+      for (const double v : rho_j) sum += v;
+      const double n = static_cast<double>(rho_j.size()), mean = sum / n;
+      rj["mean"] = mean;
+      if (rho_j.size() >= 2) {
+        double squares = 0;
+        for (const double v : rho_j) squares += (v - mean) * (v - mean);
+        rj["standard_error"] = std::sqrt(squares / (n - 1)) / std::sqrt(n);
+      }
+    }
+    json runs = json::array();
+    for (const RunSummary& s : members) runs.push_back(s.run_id);
+    out.push_back({{"ensemble", name},
+                   {"runs", runs},
+                   {"frames", frames},
+                   {"friction", shared([](const RunInfo& i) { return i.friction; })},
+                   {"particles", shared([](const RunInfo& i) { return i.particles; })},
+                   {"compression_speed", shared([](const RunInfo& i) { return i.compression_speed; })},
+                   {"rho_j", rj},
+                   {"last_activity", last ? json(*last) : json(nullptr)}});
+  }
+  return {{"ensembles", out}};
+}
+
+// ---- subscriptions ----------------------------------------------------------------------------
+
+bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+bool same_bin(const CurveBin& a, const CurveBin& b) {
+  return same_value(a.rho_lo, b.rho_lo) && same_value(a.rho_hi, b.rho_hi) && same_value(a.mean_rho, b.mean_rho) &&
+         same_value(a.mean, b.mean) && a.runs == b.runs && a.n == b.n && same_value(a.mean_z, b.mean_z) &&
+         a.standard_error.has_value() == b.standard_error.has_value() &&
+         (!a.standard_error || same_value(*a.standard_error, *b.standard_error));
+}
+
+// Recomputes a subscription's curve after each commit of a member run, off the registry's lock
+// (commits only mark the subscription), and sends the bins that changed.
+class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscriptions> {
+ public:
+  // The connections' sets end a subscription through a weak pointer: they may outlive this.
+  static std::shared_ptr<EnsembleSubscriptions> make(ApiContext& ctx) {
+    auto self = std::make_shared<EnsembleSubscriptions>(ctx);
+    self->held_ = std::make_shared<ConnectionSubscriptions>(
+        ctx.registry, ctx.max_subscriptions_per_connection, "ensemble subscription",
+        [weak = std::weak_ptr<EnsembleSubscriptions>(self)](std::uint64_t id) {
+          if (const auto s = weak.lock()) s->forget(id);
+        });
+    // A realization announced after its last frame was committed (its announcement and its frames
+    // travel on different topics) changes the curve although no commit follows.
+    ctx.registry.on_announcement([weak = std::weak_ptr<EnsembleSubscriptions>(self)](const RunInfo& info) {
+      if (const auto s = weak.lock()) s->mark_ensemble(info.ensemble);
+    });
+    return self;
+  }
+  explicit EnsembleSubscriptions(ApiContext& ctx) : ctx_(ctx) {}
+  ~EnsembleSubscriptions() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_all();
+    if (worker_.joinable()) worker_.join();
+  }
+
+  json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    Registry& registry = ctx_.registry;
+    auto sub = std::make_shared<Subscription>();
+    sub->request = get_curve_request(registry, params);
+    sub->session = session;
+    held_->check_room(*session);
+    {
+      std::lock_guard lock(mutex_);
+      if (!worker_.joinable()) worker_ = std::thread([this] { work(); });
+    }
+    // Registered before the curve is first computed, and the worker waits for that computation
+    // (the subscription's lock), so no commit falls between the reply and the first notification.
+    std::unique_lock sub_lock(sub->mutex);
+    std::weak_ptr<EnsembleSubscriptions> weak_self = weak_from_this();
+    const std::string ensemble = sub->request.ensemble;
+    const std::uint64_t id =
+        registry.subscribe(sub->request.run, std::numeric_limits<std::uint32_t>::max(),
+                           [weak_self, ensemble](std::uint64_t subscription, const SeriesPoint& p) {
+                             const auto self = weak_self.lock();
+                             if (!self) return false;
+                             if (ensemble.empty() || p.ensemble == ensemble) self->mark(subscription);
+                             return true;
+                           });
+    sub->id = id;
+    {
+      std::lock_guard lock(mutex_);
+      subscriptions_[id] = sub;
+    }
+    held_->add(session, id);
+    Curve c;
+    try {
+      c = compute_curve(registry, sub->request, sub->cache);
+    } catch (...) {
+      sub_lock.unlock();
+      held_->drop(*session, id);
+      throw;
+    }
+    sub->sent = c.bins;
+    json out = curve_json(sub->request, c);
+    out["subscription"] = id;
+    return out;
+  }
+
+  json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+    const std::uint32_t id = require_index(params, "subscription");
+    held_->remove(*session, id);
+    return {{"unsubscribed", id}};
+  }
+
+ private:
+  struct Subscription {
+    std::mutex mutex;  // held while its curve is computed and sent
+    std::uint64_t id = 0;
+    CurveRequest request;
+    std::weak_ptr<rpc::Session> session;
+    StepCache cache;
+    std::vector<CurveBin> sent;  // the bins as the subscriber has them
+  };
+
+  void forget(std::uint64_t id) {
+    std::lock_guard lock(mutex_);
+    subscriptions_.erase(id);
+  }
+
+  // Under the registry's lock: marks every subscription to `ensemble`'s curve.
+  void mark_ensemble(const std::string& ensemble) {
+    if (ensemble.empty()) return;
+    std::vector<std::uint64_t> ids;
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& [id, sub] : subscriptions_)
+        if (sub->request.ensemble == ensemble) ids.push_back(id);
+    }
+    for (const std::uint64_t id : ids) mark(id);
+  }
+
+  // Under the registry's lock: only queues the id (once until it is served).
+  void mark(std::uint64_t id) {
+    {
+      std::lock_guard lock(mutex_);
+      if (!queued_.insert(id).second) return;
+      queue_.push_back(id);
+    }
+    wake_.notify_one();
+  }
+
+  void work() {
+    while (true) {
+      std::shared_ptr<Subscription> sub;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        if (stopping_) return;
+        const std::uint64_t id = queue_.front();
+        queue_.pop_front();
+        queued_.erase(id);
+        const auto it = subscriptions_.find(id);
+        if (it == subscriptions_.end()) continue;
+        sub = it->second;
+      }
+      try {
+        update(*sub);
+      } catch (const std::exception&) {
+        // A curve that cannot be computed now (a member's diagrams unusable) is retried at the next commit.
+      }
+    }
+  }
+
+  void update(Subscription& sub) {
+    std::lock_guard lock(sub.mutex);
+    const auto session = sub.session.lock();
+    if (!session) return;
+    const Curve c = compute_curve(ctx_.registry, sub.request, sub.cache);
+    std::vector<CurveBin> changed;
+    for (const CurveBin& b : c.bins) {
+      const auto old = std::find_if(sub.sent.begin(), sub.sent.end(),
+                                    [&](const CurveBin& s) { return same_value(s.rho_lo, b.rho_lo); });
+      if (old == sub.sent.end() || !same_bin(*old, b)) changed.push_back(b);
+    }
+    json removed = json::array();
+    for (const CurveBin& s : sub.sent)
+      if (std::none_of(c.bins.begin(), c.bins.end(), [&](const CurveBin& b) { return same_value(s.rho_lo, b.rho_lo); }))
+        removed.push_back(s.rho_lo);
+    if (changed.empty() && removed.empty()) return;
+    json params = curve_head(sub.request, c);
+    put_bins(params, changed);
+    if (!removed.empty()) params["removed"] = removed;
+    params["subscription"] = sub.id;
+    sub.sent = c.bins;
+    session->send(rpc::notification("ensemble.bins", std::move(params)));
+  }
+
+  ApiContext& ctx_;
+  std::shared_ptr<ConnectionSubscriptions> held_;
+  std::mutex mutex_;  // guards what follows
+  std::map<std::uint64_t, std::shared_ptr<Subscription>> subscriptions_;
+  std::deque<std::uint64_t> queue_;
+  std::set<std::uint64_t> queued_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  std::thread worker_;
+};
+
+}  // namespace
+
+json series_ratio_get(const Registry& registry, const json& params) {
+  std::string ratio;
+  const auto [numerator, denominator] = get_step_query(params, ratio);
+  const FrameRange range = get_frame_range(params);
+  const std::string run = resolve_run(registry, params);
+  const auto frames = registry.frames(run);
+  if (!frames) unknown_run(run);
+  std::vector<StepValue> top, bottom;
+  append_step_values(*frames, numerator, 0, top);
+  append_step_values(*frames, *denominator, 0, bottom);
+
+  json out = describe(numerator.metric, numerator.dim, numerator.force, numerator.essential);
+  out["ratio"] = ratio;
+  out["run"] = run;
+  SeriesColumns columns;
+  for (std::size_t k = 0; k < frames->size(); ++k) {
+    const AnalyzedFrame& f = *(*frames)[k];
+    if (!range.contains(f.header.index)) continue;
+    const double v = top[k].value ? *top[k].value / *bottom[k].value : std::numeric_limits<double>::quiet_NaN();
+    columns.add(f, std::isfinite(v) ? json(v) : json(nullptr), std::isinf(v));
+  }
+  columns.put(out);
+  return out;
+}
+
+MethodTable ensemble_methods(ApiContext& ctx) {
+  Registry& registry = ctx.registry;
+  const auto subscriptions = EnsembleSubscriptions::make(ctx);
+  const std::vector<std::string_view> curve_params{"ensemble",  "run",       "metric", "q",    "dim",  "force",
+                                                   "essential", "bin_width", "bins",   "axis", "ratio"};
+  return {
+      {"ensembles.list",
+       {{}, [&registry](const json&, const std::shared_ptr<rpc::Session>&) { return ensembles_list(registry); }}},
+      {"ensemble.series",
+       {curve_params,
+        [&registry](const json& p, const std::shared_ptr<rpc::Session>&) { return ensemble_series(registry, p); }}},
+      {"ensemble.subscribe",
+       {curve_params,
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->subscribe(p, s);
+        }}},
+      {"ensemble.unsubscribe",
+       {{"subscription"},
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+          return subscriptions->unsubscribe(p, s);
+        }}},
+  };
+}
+
+}  // namespace fnet::server

@@ -1,0 +1,62 @@
+// What every fnet-analyze command shares: option parsing, the usage checks, and running one
+// command with its exit code.
+#include <algorithm>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "server/fnet-analyze/commands.hpp"
+
+namespace fnet::analyze {
+
+std::optional<boost::program_options::variables_map> parse_options(
+    const boost::program_options::options_description& options, const std::vector<std::string>& args,
+    const boost::program_options::positional_options_description* positional) {
+  namespace po = boost::program_options;
+  po::variables_map vm;
+  auto parser = po::command_line_parser(args).options(options);
+  if (positional) parser.positional(*positional);
+  po::store(parser.run(), vm);
+  if (vm.count("help")) {
+    std::cout << options << "\n";
+    return std::nullopt;
+  }
+  po::notify(vm);
+  return vm;
+}
+
+MetricChoice metric_option(const std::string& name, std::optional<double> q) {
+  const bool known = std::find(kMetricNames.begin(), kMetricNames.end(), name) != kMetricNames.end();
+  // A known name fails only for its exponent.
+  return named_option(known ? "--q" : "--metric", [&] { return parse_metric(name, q); });
+}
+
+void require_file(const std::string& what, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such file");
+  if (fs::is_directory(path))
+    throw boost::program_options::error(what + " " + path.string() + ": is a directory, not a file");
+}
+
+void require_directory(const std::string& what, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such directory");
+  if (!fs::is_directory(path)) throw boost::program_options::error(what + " " + path.string() + ": not a directory");
+}
+
+int run_command(const std::string& name, const Command& command, const std::vector<std::string>& args) {
+  try {
+    return command(args);
+  } catch (const boost::program_options::error& e) {
+    std::cerr << "fnet-analyze " << name << ": " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "fnet-analyze " << name << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace fnet::analyze

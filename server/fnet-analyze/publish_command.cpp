@@ -1,0 +1,57 @@
+// fnet-analyze publish: replays a recorded run onto DDS, as fnet-simd would stream it.
+#include <chrono>
+#include <iostream>
+#include <thread>
+
+#include <boost/program_options.hpp>
+
+#include "common/transport/frame_transport.hpp"
+#include "server/fnet-analyze/commands.hpp"
+#include "server/fnet-analyze/run_source.hpp"
+
+namespace po = boost::program_options;
+
+namespace fnet::analyze {
+
+int publish_command(const std::vector<std::string>& args) {
+  po::options_description options(
+      "usage: fnet-analyze publish (--run-file F | --csv-dir DIR --run-id R) [--ensemble E] [--rate FPS]\n"
+      "       [--domain D]\n\n"
+      "Publishes the run's announcement and every frame on the DDS topics fnet_RunInfo and\n"
+      "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
+      "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n\n"
+      "options");
+  RunSource source;
+  double rate = 0;
+  int domain = 0;
+  double linger = 0, wait_for_reader = 10;
+  options.add_options()("help,h", "show this help");
+  source.add_options(options);
+  options.add_options()("rate", po::value(&rate)->default_value(0), "frames per second (0: as fast as possible)")(
+      "domain", po::value(&domain)->default_value(0), "DDS domain id")(
+      "wait-for-reader", po::value(&wait_for_reader)->default_value(10),
+      "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")(
+      "linger", po::value(&linger)->default_value(0),
+      "seconds to keep serving late subscribers from the durability history after the last frame");
+  if (!parse_options(options, args)) return 0;
+  auto [info, frames] = source.read();
+  dds::FramePublisher publisher(static_cast<dds_domainid_t>(domain));
+  // Discovery takes a moment; frames written before it are still served to late readers only
+  // while this process lives (see --linger).
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_for_reader);
+  while (publisher.matched_frame_readers() == 0 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  publisher.publish(info);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (rate > 0) std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(k) / rate));
+    publisher.publish(frames[k]);
+  }
+  publisher.wait_for_acks(DDS_SECS(30));
+  std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << frames.size() << " frames published, "
+            << publisher.matched_frame_readers() << " reader(s) matched\n";
+  if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
+  return 0;
+}
+
+}  // namespace fnet::analyze

@@ -1,0 +1,65 @@
+// fnet-analyze store: the analysis fnet-server does live, done offline into the same store file.
+#include <iostream>
+#include <variant>
+
+#include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/analysis/run_pipeline.hpp"
+#include "common/store/analysis_store.hpp"
+#include "server/fnet-analyze/commands.hpp"
+#include "server/fnet-analyze/run_source.hpp"
+
+namespace po = boost::program_options;
+
+namespace fnet::analyze {
+
+int store_command(const std::vector<std::string>& args) {
+  po::options_description options(
+      "usage: fnet-analyze store (--run-file F | --csv-dir DIR --run-id R) [--ensemble E] --data-dir D\n\n"
+      "Analyzes every frame of a recorded run in index order (validation, diagrams of both force\n"
+      "networks, the twelve distances to the previous accepted frame) and writes D/RUN.h5 in the\n"
+      "schema fnet-server uses (proto/store.md), replacing any store of that run there.\n\n"
+      "options");
+  RunSource source;
+  std::string data_dir;
+  options.add_options()("help,h", "show this help");
+  source.add_options(options);
+  options.add_options()("data-dir", po::value(&data_dir)->required(), "directory of run stores");
+  if (!parse_options(options, args)) return 0;
+  auto [info, frames] = source.read();
+  std::filesystem::create_directories(data_dir);
+  const std::filesystem::path path = store_path(data_dir, info.run_id);
+  std::filesystem::remove(path);
+  StoreWriter store(path, info.run_id);
+  store.write_info(info);
+  // The server's pipeline, fed the file's frames as if they had arrived all at once: a repeated
+  // index counts once (its first occurrence), and a missing one is skipped when the run ends.
+  RunPipeline pipeline;
+  const auto write = [&](std::vector<Settlement> settled) {
+    for (const Settlement& s : settled) {
+      if (const auto* accepted = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&s)) {
+        store.append(**accepted);
+      } else if (const auto* rejected = std::get_if<RejectedFrame>(&s)) {
+        store.append(*rejected);
+        std::cerr << "fnet-analyze store: rejected " << rejected->reason << "\n";
+      } else if (const auto* skipped = std::get_if<SkippedFrames>(&s)) {
+        std::cerr << "fnet-analyze store: run " << info.run_id << " has no frames " << skipped->first << ".."
+                  << skipped->last << "\n";
+      }
+    }
+  };
+  const auto now = PipelineClock::now();
+  for (RunFrame& frame : frames) write(pipeline.push(std::move(frame), now));
+  write(pipeline.finish());
+  const std::size_t accepted = pipeline.counts().accepted, rejected = pipeline.counts().rejected;
+  std::cout << nlohmann::json{{"run", info.run_id},
+                              {"store", path.string()},
+                              {"frames", accepted},
+                              {"rejected", rejected}}
+                   .dump()
+            << "\n";
+  return 0;
+}
+
+}  // namespace fnet::analyze

@@ -1,0 +1,50 @@
+// The DDS side of fnet-server: one thread takes run announcements and frames and hands them to
+// the registry. Memory stays bounded: it takes frames only while fewer than max_in_flight are
+// being analyzed, and the DDS reader holds at most max_in_flight more (its resource limit), after
+// which the simulation's writer waits — back-pressure instead of an unbounded buffer.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <dds/dds.h>
+
+#include "common/transport/frame_transport.hpp"
+#include "server/registry/run_registry.hpp"
+
+namespace fnet::server {
+
+struct IngestOptions {
+  dds_domainid_t domain = DDS_DOMAIN_DEFAULT;
+  std::size_t max_in_flight = 64;
+};
+
+class Ingest {
+ public:
+  // Creates the DDS participant and readers here, on the caller's thread, so that a server that
+  // cannot subscribe (a broken CYCLONEDDS_URI, say) fails at start instead of serving nothing;
+  // throws std::runtime_error naming the DDS problem.
+  Ingest(Registry& registry, IngestOptions options);
+  ~Ingest();  // stops and joins the thread
+  void stop();
+
+  // "running", or "stopped: <reason>" once the thread ended on an error (server.status shows it).
+  std::string state() const;
+
+ private:
+  void run();
+
+  Registry& registry_;
+  IngestOptions options_;
+  std::unique_ptr<dds::FrameSubscriber> subscriber_;
+  std::atomic<bool> stopping_{false};
+  mutable std::mutex mutex_;
+  std::string state_ = "running";
+  std::thread thread_;
+};
+
+}  // namespace fnet::server

@@ -1,0 +1,400 @@
+#include "server/registry/run_registry.hpp"
+
+#include <iostream>
+#include <variant>
+
+#include <boost/asio/post.hpp>
+
+#include "common/analysis/jamming.hpp"
+
+namespace fnet::server {
+
+Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits)
+    : data_dir_(std::move(data_dir)), pool_(pool), limits_(limits) {
+  std::filesystem::create_directories(data_dir_);
+}
+
+std::vector<std::string> Registry::load() {
+  std::lock_guard lock(mutex_);
+  return load_locked(nullptr);
+}
+
+Registry::Adopted Registry::adopt_new_stores() {
+  std::lock_guard lock(mutex_);
+  Adopted out;
+  out.problems = load_locked(&out.runs);
+  return out;
+}
+
+std::vector<std::string> Registry::load_locked(std::vector<std::string>* only_new) {
+  std::vector<std::string> problems;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir_)) {
+    if (entry.path().extension() != ".h5") continue;
+    // A rescan takes only the stores of runs the server does not know: the others it writes itself.
+    if (only_new && runs_.count(entry.path().stem().string())) continue;
+    try {
+      StoredRun stored = read_store(entry.path());
+      Run& run = run_locked(stored.info.run_id);
+      run.has_info = stored.has_info;
+      run.last_activity = stored.last_activity();
+      if (stored.has_info) run.info = stored.info;
+      std::vector<std::uint32_t> settled;
+      for (AnalyzedFrame& f : stored.frames) {
+        const std::uint32_t index = f.header.index;
+        settled.push_back(index);
+        run.committed[index] = std::make_shared<const AnalyzedFrame>(std::move(f));
+      }
+      for (const RejectedFrame& r : stored.rejected) settled.push_back(r.index);
+      run.rejected = std::move(stored.rejected);
+      run.pipeline.resume(settled, run.committed.empty() ? nullptr : run.committed.rbegin()->second);
+      if (only_new) only_new->push_back(run.run_id);
+    } catch (const std::exception& e) {
+      problems.push_back(e.what());
+    }
+  }
+  return problems;
+}
+
+Registry::Run& Registry::run_locked(const std::string& run_id) {
+  auto [it, created] = runs_.try_emplace(run_id);
+  Run& run = it->second;
+  if (created) {
+    run.run_id = run_id;
+    run.info.run_id = run_id;
+    run.pipeline = RunPipeline(limits_.gap_timeout);
+    try {
+      run.store = std::make_unique<StoreWriter>(store_path(data_dir_, run_id), run_id);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+  }
+  return run;
+}
+
+void Registry::note_rejection_locked(std::string reason) {
+  // The most recent reasons_kept reasons, whatever their source.
+  recent_rejections_.push_back(std::move(reason));
+  while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
+}
+
+void Registry::store_error_locked(Run& run, const std::exception& e) {
+  // The analysis goes on in memory; the store stays as it was up to the failure.
+  run.store_problem = e.what();
+  std::cerr << "fnet-server: store of run " << run.run_id << ": " << e.what() << "\n";
+}
+
+void Registry::on_info(const RunInfo& info) {
+  std::lock_guard lock(mutex_);
+  if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
+    ++counters_.malformed;
+    note_rejection_locked("run announcement rejected: " + problem);
+    return;
+  }
+  Run& run = run_locked(info.run_id);
+  if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
+  run.has_info = true;
+  run.info = info;
+  run.last_activity = store_time_now();
+  if (run.store) try {
+      run.store->write_info(info);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+  if (announcement_listener_) announcement_listener_(info);
+}
+
+void Registry::on_announcement(std::function<void(const RunInfo&)> listener) {
+  std::lock_guard lock(mutex_);
+  announcement_listener_ = std::move(listener);
+}
+
+void Registry::on_malformed(const std::string& reason) {
+  std::lock_guard lock(mutex_);
+  ++counters_.malformed;
+  note_rejection_locked(reason);
+}
+
+void Registry::on_frame(RunFrame frame) {
+  std::unique_lock lock(mutex_);
+  ++counters_.received;
+  if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
+    ++counters_.malformed;
+    note_rejection_locked(frame.frame.label + ": rejected: " + problem);
+    return;
+  }
+  Run& run = run_locked(frame.header.run_id);
+  run.last_activity = store_time_now();
+  RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
+  switch (admission.arrival) {
+    case RunPipeline::Arrival::duplicate:
+      ++counters_.duplicates;
+      return;
+    case RunPipeline::Arrival::late:
+      ++counters_.late;
+      break;
+    case RunPipeline::Arrival::queued:
+      post_locked(run, std::move(*admission.job));
+      break;
+  }
+  publish_locked(run);
+}
+
+void Registry::post_locked(const Run& run, DiagramJob job) {
+  boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+    DiagramOutcome outcome = job.run();
+    std::lock_guard lock(mutex_);
+    Run& r = runs_.at(id);
+    post_locked(r, r.pipeline.analyzed(std::move(outcome)));
+    publish_locked(r);
+  });
+}
+
+void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
+  for (DistanceJob& job : jobs)
+    boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+      const DistanceOutcome outcome = job.run();
+      std::lock_guard lock(mutex_);
+      Run& r = runs_.at(id);
+      r.pipeline.measured(outcome);
+      publish_locked(r);
+    });
+}
+
+void Registry::publish_locked(Run& run) {
+  for (Settlement& s : run.pipeline.take_settled()) {
+    if (auto* accepted = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&s)) {
+      commit_locked(run, std::move(*accepted));
+    } else if (const auto* rejected = std::get_if<RejectedFrame>(&s)) {
+      reject_locked(run, *rejected);
+    } else if (const auto* skipped = std::get_if<SkippedFrames>(&s)) {
+      counters_.skipped += skipped->last - skipped->first + 1;
+      note_rejection_locked("run " + run.run_id + ": frames " + std::to_string(skipped->first) + ".." +
+                            std::to_string(skipped->last) + " never arrived; skipped after the gap timeout");
+    }
+  }
+  const auto horizon = Clock::now() - std::chrono::seconds(10);
+  while (!recent_commits_.empty() && recent_commits_.front() < horizon) recent_commits_.pop_front();
+}
+
+// The store and the subscribers see index order, the pipeline's.
+void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame) {
+  if (run.store) try {
+      run.store->append(*frame);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+  if (frame->network) {  // the store keeps the network; memory keeps only the diagrams
+    auto kept = std::make_shared<AnalyzedFrame>(*frame);
+    kept->network.reset();
+    frame = std::move(kept);
+  }
+  ++counters_.analyzed;
+  recent_commits_.push_back(Clock::now());
+  const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances, run.info.ensemble};
+  run.committed[frame->header.index] = std::move(frame);
+  for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
+    const bool keep =
+        (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
+    s = keep ? std::next(s) : subscriptions_.erase(s);
+  }
+}
+
+void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
+  run.rejected.push_back(rejected);
+  ++counters_.rejected;
+  note_rejection_locked(rejected.reason);
+  std::cerr << "fnet-server: rejected " << rejected.reason << "\n";
+  if (run.store) try {
+      run.store->append(rejected);
+    } catch (const std::exception& e) {
+      store_error_locked(run, e);
+    }
+}
+
+void Registry::check_gaps() {
+  std::lock_guard lock(mutex_);
+  const auto now = Clock::now();
+  for (auto& [id, run] : runs_) {
+    post_locked(run, run.pipeline.skip_gaps(now));
+    publish_locked(run);
+  }
+}
+
+std::size_t Registry::in_flight() const {
+  std::lock_guard lock(mutex_);
+  std::size_t n = 0;
+  for (const auto& [id, run] : runs_) n += run.pipeline.pending();
+  return n;
+}
+
+RunSummary Registry::summary_locked(const std::string& id, const Run& run) const {
+  RunSummary s;
+  s.run_id = id;
+  s.has_info = run.has_info;
+  s.info = run.info;
+  s.frames = run.committed.size();
+  s.rejected = run.rejected.size();
+  s.pending = run.pipeline.pending();
+  s.duplicates = run.pipeline.counts().duplicates;
+  s.skipped = run.pipeline.counts().skipped;
+  if (!run.committed.empty()) {
+    s.first_frame = run.committed.begin()->first;
+    s.last_frame = run.committed.rbegin()->first;
+    s.last_rho = run.committed.rbegin()->second->header.rho;
+    s.last_z = run.committed.rbegin()->second->header.z;
+    std::vector<double> rho, z;
+    rho.reserve(run.committed.size());
+    z.reserve(run.committed.size());
+    for (const auto& [index, frame] : run.committed) {
+      rho.push_back(frame->header.rho);
+      z.push_back(frame->header.z);
+    }
+    s.rho_j = jamming_density(rho, z);
+  }
+  s.last_activity = run.last_activity;
+  s.seconds_since_last_frame = store_time_now() - run.last_activity.value_or(run.known_since);
+  return s;
+}
+
+std::vector<RunSummary> Registry::runs() const {
+  std::vector<RunSummary> out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, run] : runs_) out.push_back(summary_locked(id, run));
+  return out;
+}
+
+std::optional<RunSummary> Registry::run(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return std::nullopt;
+  return summary_locked(it->first, it->second);
+}
+
+bool Registry::has_run(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  return runs_.count(run_id) != 0;
+}
+
+std::vector<RejectedFrame> Registry::rejected(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  return it == runs_.end() ? std::vector<RejectedFrame>{} : it->second.rejected;
+}
+
+std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> Registry::frames(const std::string& run_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return std::nullopt;
+  std::vector<std::shared_ptr<const AnalyzedFrame>> out;
+  out.reserve(it->second.committed.size());
+  for (const auto& [index, frame] : it->second.committed) out.push_back(frame);
+  return out;
+}
+
+std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, std::uint32_t index) const {
+  std::lock_guard lock(mutex_);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end()) return nullptr;
+  const auto f = it->second.committed.find(index);
+  return f == it->second.committed.end() ? nullptr : f->second;
+}
+
+Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
+  std::lock_guard lock(mutex_);
+  const std::string what = "run " + run_id + " frame " + std::to_string(index);
+  const auto it = runs_.find(run_id);
+  if (it == runs_.end() || !it->second.committed.count(index))
+    throw NetworkUnavailable(what + ": no such analyzed frame");
+  const Run& run = it->second;
+  if (!run.store)
+    throw NetworkUnavailable(what + ": the force network is not stored: the run has no store (" + run.store_problem +
+                             ")");
+  std::optional<Frame> network;
+  try {
+    network = run.store->network(index);
+  } catch (const std::exception& e) {
+    throw NetworkUnavailable(what + ": the force network is not stored: " + e.what() +
+                             (run.store_problem.empty() ? "" : " (" + run.store_problem + ")"));
+  }
+  if (!network)
+    throw NetworkUnavailable(what + ": the force network is not stored: the frame was analyzed before the store " +
+                             "kept networks (it came from a " + kStoreSchemaV1 + " store); analyze the run again " +
+                             "(fnet-analyze store) to have it");
+  return std::move(*network);
+}
+
+std::string Registry::newest_run() const {
+  std::lock_guard lock(mutex_);
+  // A run whose activity is unknown (a store from before the times were kept) is the oldest.
+  const Run* newest = nullptr;
+  for (const auto& [id, run] : runs_)
+    if (!newest || run.last_activity > newest->last_activity) newest = &run;
+  return newest ? newest->run_id : std::string();
+}
+
+std::vector<Registry::MemberRun> Registry::ensemble_members(const std::string& ensemble) const {
+  std::vector<MemberRun> out;
+  if (ensemble.empty()) return out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, run] : runs_) {
+    if (!run.has_info || run.info.ensemble != ensemble) continue;
+    MemberRun& m = out.emplace_back(MemberRun{id, {}});
+    m.frames.reserve(run.committed.size());
+    for (const auto& [index, frame] : run.committed) m.frames.push_back(frame);
+  }
+  return out;
+}
+
+std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener) {
+  std::lock_guard lock(mutex_);
+  const std::uint64_t subscription = next_subscription_++;
+  for (const auto& [id, run] : runs_) {
+    if (!run_id.empty() && id != run_id) continue;
+    for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end(); ++it)
+      if (!listener(subscription,
+                    {id, it->second->header, it->second->previous, it->second->distances, run.info.ensemble}))
+        return 0;
+  }
+  subscriptions_[subscription] = {run_id, std::move(listener)};
+  return subscription;
+}
+
+void Registry::unsubscribe(std::uint64_t id) {
+  std::lock_guard lock(mutex_);
+  subscriptions_.erase(id);
+}
+
+std::size_t Registry::subscriptions() const {
+  std::lock_guard lock(mutex_);
+  return subscriptions_.size();
+}
+
+Counters Registry::counters() const {
+  std::lock_guard lock(mutex_);
+  return counters_;
+}
+
+std::deque<std::string> Registry::recent_rejections() const {
+  std::lock_guard lock(mutex_);
+  return recent_rejections_;
+}
+
+double Registry::frames_per_second() const {
+  std::lock_guard lock(mutex_);
+  const auto horizon = Clock::now() - std::chrono::seconds(10);
+  std::size_t n = 0;
+  for (const auto& t : recent_commits_) n += t >= horizon;
+  return static_cast<double>(n) / 10.0;
+}
+
+double Registry::oldest_pending_seconds() const {
+  std::lock_guard lock(mutex_);
+  const auto now = Clock::now();
+  double oldest = 0;
+  for (const auto& [id, run] : runs_)
+    if (const auto arrived = run.pipeline.oldest_arrival())
+      oldest = std::max(oldest, std::chrono::duration<double>(now - *arrived).count());
+  return oldest;
+}
+
+}  // namespace fnet::server
