@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/run_state.hpp"
 
 namespace fnet::sim {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "server/dem/clones.hpp"
-#include "server/dem/simulation.hpp"
+#include "server/dem/run_state.hpp"
 #include "server/dem/workers.hpp"
 
 namespace fnet::sim {

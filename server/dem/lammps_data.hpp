@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/run_state.hpp"
 
 namespace fnet::sim {
 

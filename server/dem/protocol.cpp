@@ -4,6 +4,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "server/dem/diagnostics.hpp"
+#include "server/dem/time_step.hpp"
+#include "server/dem/walls.hpp"
+
 namespace fnet::sim {
 namespace {
 

@@ -12,10 +12,12 @@
 #include <functional>
 #include <string>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/run_state.hpp"
 #include "server/dem/snapshot.hpp"
 
 namespace fnet::sim {
+
+class Workers;
 
 inline constexpr std::int64_t kRelaxCheck = 50;
 

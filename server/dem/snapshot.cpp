@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/diagnostics.hpp"
+#include "server/dem/walls.hpp"
 
 namespace fnet::sim {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/run_state.hpp"
 
 namespace fnet::sim {
 

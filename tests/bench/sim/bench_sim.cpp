@@ -15,8 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "server/dem/initial_packing.hpp"
 #include "server/dem/protocol.hpp"
-#include "server/dem/simulation.hpp"
+#include "server/dem/time_step.hpp"
 #include "server/dem/workers.hpp"
 #include "tests/server/dem/elastic_gas.hpp"
 

@@ -17,7 +17,8 @@
 
 #include <gtest/gtest.h>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/initial_packing.hpp"
+#include "server/dem/time_step.hpp"
 
 namespace fnet::sim {
 namespace {

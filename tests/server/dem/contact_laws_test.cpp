@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "server/dem/diagnostics.hpp"
+#include "server/dem/initial_packing.hpp"
 #include "server/dem/protocol.hpp"
-#include "server/dem/simulation.hpp"
+#include "server/dem/time_step.hpp"
 #include "tests/server/dem/elastic_gas.hpp"
 
 namespace fnet::sim {

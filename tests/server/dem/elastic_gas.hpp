@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "server/dem/simulation.hpp"
+#include "server/dem/diagnostics.hpp"
+#include "server/dem/time_step.hpp"
 
 namespace fnet::sim::scenes {
 

@@ -15,6 +15,8 @@
 #include "common/topology/frame.hpp"
 #include "server/dem/checkpoint.hpp"
 #include "server/dem/csv_export.hpp"
+#include "server/dem/diagnostics.hpp"
+#include "server/dem/initial_packing.hpp"
 #include "server/dem/workers.hpp"
 #include "tests/support/run_frame_compare.hpp"
 

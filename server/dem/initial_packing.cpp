@@ -1,4 +1,4 @@
-#include "server/dem/simulation.hpp"
+#include "server/dem/initial_packing.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,13 +8,11 @@
 #include <string>
 
 #include "server/dem/contact_forces.hpp"
-#include "server/dem/integrator.hpp"
 #include "server/dem/rng.hpp"
+#include "server/dem/walls.hpp"
 
 namespace fnet::sim {
 namespace {
-
-constexpr std::size_t kTeamPairsPerGrain = 2;
 
 Simulation make(const Params& p, std::span<const GrainInit> grains) {
   validate(p);
@@ -117,73 +115,6 @@ Simulation make_custom(const Params& p, std::span<const GrainInit> grains) {
   Params q = p;
   q.particles = grains.size();
   return make(q, grains);
-}
-
-void step(Simulation& s, Workers* team) {
-  // The team is skipped on a sparse list (fewer than 2 listed pairs per grain, a relaxing
-  // lattice), where its synchronization costs more than the split saves; `fnet_sim_bench
-  // --threads` measures both sides. Either way the bits are the same.
-  Workers* workers = s.list.partner.size() >= kTeamPairsPerGrain * s.n ? team : nullptr;
-  const double half_skin = 0.5 * s.list.skin;
-  const double limit2 = half_skin * half_skin;
-  const bool moved =
-      s.params.integrator == Integrator::gear ? gear_predict(s, limit2, workers) : verlet_first_half(s, limit2);
-  if (s.walls_moving) ++s.compress_step;
-  place_walls(s);
-  if (moved || std::abs(wall_offset(s) - s.list.wall_offset_build) > half_skin)
-    rebuild(s.list, s.x[0], s.y[0], s.radius, s.inv_mass, s.n, wall_offset(s));
-  if (s.params.integrator == Integrator::gear) {
-    compute_forces(s, workers, [&s](std::size_t begin, std::size_t end) { gear_correct_range(s, begin, end); });
-  } else {
-    compute_forces(s, workers);
-    verlet_second_half(s);
-  }
-  ++s.step;
-}
-
-void damp_velocities(Simulation& s, double factor) {
-  for (std::size_t i = 0; i < s.n; ++i) {
-    s.x[1][i] *= factor;
-    s.y[1][i] *= factor;
-  }
-}
-
-double translational_energy(const Simulation& s) {
-  const double inv_dt2 = 1 / (s.c.dt * s.c.dt);
-  double e = 0;
-  for (std::size_t i = 0; i < s.n; ++i) e += 0.5 * (s.x[1][i] * s.x[1][i] + s.y[1][i] * s.y[1][i]) / s.inv_mass[i];
-  return e * inv_dt2;
-}
-
-double kinetic_energy(const Simulation& s) {
-  const double inv_dt2 = 1 / (s.c.dt * s.c.dt);
-  double e = 0;
-  for (std::size_t i = 0; i < s.n; ++i) {
-    const double v2 = s.x[1][i] * s.x[1][i] + s.y[1][i] * s.y[1][i];
-    e += 0.5 * (v2 / s.inv_mass[i] + s.th[1][i] * s.th[1][i] / s.inv_inertia[i]) * inv_dt2;
-  }
-  return e;
-}
-
-double elastic_energy(const Simulation& s) {
-  double e = 0;
-  const NeighbourList& l = s.list;
-  for (std::size_t i = 0; i < s.n; ++i) {
-    for (std::uint32_t p = l.offset[i]; p < l.offset[i + 1]; ++p) {
-      const std::uint32_t j = l.partner[p];
-      const double dx = s.x[0][i] - s.x[0][j], dy = s.y[0][i] - s.y[0][j];
-      const double overlap = s.radius[i] + s.radius[j] - std::sqrt(dx * dx + dy * dy);
-      if (overlap > 0) e += 0.5 * s.c.kn * overlap * overlap;
-    }
-  }
-  return e;
-}
-
-double coordination(const Simulation& s) {
-  std::size_t contacts = 0;
-  const NeighbourList& l = s.list;
-  for (std::size_t p = 0; p < l.partner.size(); ++p) contacts += (l.partner[p] < s.n && l.touching[p] && l.fn[p] > 0);
-  return s.n == 0 ? 0.0 : 2.0 * static_cast<double>(contacts) / static_cast<double>(s.n);
 }
 
 }  // namespace fnet::sim

@@ -11,12 +11,10 @@
 
 #include <array>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "server/dem/neighbour_list.hpp"
 #include "server/dem/params.hpp"
-#include "server/dem/walls.hpp"
 
 namespace fnet::sim {
 
@@ -52,36 +50,5 @@ struct Simulation {
 
   double grain_area = 0;  // Σ π r²
 };
-
-// One grain to place by hand (tests): position, radius, velocity (d / internal time), spin.
-struct GrainInit {
-  double x = 0, y = 0, r = 0.5, vx = 0, vy = 0, w = 0;
-};
-
-// The paper's start: grains on a square lattice filling the box, random diameters and velocities
-// drawn from the seed, walls at rest. Deterministic for a given Params. Without p.box the box is
-// sized so that the grains drawn fill p.rho_initial of it; the returned params hold the box used.
-// Throws std::invalid_argument when the lattice would be denser than d_ave or rho_final is not
-// above the start's packing fraction.
-Simulation make_lattice(const Params& p);
-
-// Grains placed by hand inside the walls of a box of side p.box, which must be set (tests).
-Simulation make_custom(const Params& p, std::span<const GrainInit> grains);
-
-class Workers;
-
-// One time step with the configured integrator: predict, walls, list update, forces, correct.
-// With a team of threads (workers.hpp) the Gear step and the forces run split over it, giving
-// the same bits as without.
-void step(Simulation& s, Workers* workers = nullptr);
-
-// Multiplies every grain's velocity by `factor` (the relaxation's damping; spins are left alone).
-void damp_velocities(Simulation& s, double factor);
-
-// Diagnostics, in internal units.
-double kinetic_energy(const Simulation& s);        // translational + rotational, grains
-double translational_energy(const Simulation& s);  // Σ m v² / 2, grains
-double elastic_energy(const Simulation& s);        // Σ k_n x² / 2 over touching pairs
-double coordination(const Simulation& s);          // Z = 2 × grain–grain contacts with F_n > 0 / n
 
 }  // namespace fnet::sim
