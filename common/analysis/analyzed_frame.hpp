@@ -8,7 +8,7 @@
 #include <string>
 
 #include "common/analysis/frame_analysis.hpp"
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet {
 

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "common/analysis/analyzed_frame.hpp"
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet {
 

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet {
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -105,18 +104,6 @@ std::optional<StoreTime> StoredRun::last_activity() const {
   for (const StoreTime t : rejected_at) consider(t);
   return latest;
 }
-
-std::string name_problem(const std::string& name, const std::string& what) {
-  if (name.empty()) return what + " is empty";
-  if (name.size() > 64) return what + " longer than 64 characters";
-  for (const char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'))
-      return what + " '" + name + "' has a character outside [A-Za-z0-9._-]";
-  if (name == "." || name == "..") return what + " '" + name + "' is not a name";
-  return {};
-}
-
-std::string run_id_problem(const std::string& run_id) { return name_problem(run_id, "run id"); }
 
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id) {
   return data_dir / (run_id + ".h5");

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/analysis/analyzed_frame.hpp"
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
 #include "common/store/provenance_attributes.hpp"
 
@@ -76,9 +76,5 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
 
 // Where a run's store lives in a data directory (run ids are restricted to [A-Za-z0-9._-]).
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id);
-// Empty when `name` is acceptable as a run id or ensemble name ([A-Za-z0-9._-]{1,64}, not . or
-// ..), else why not, calling it `what`.
-std::string name_problem(const std::string& name, const std::string& what);
-std::string run_id_problem(const std::string& run_id);
 
 }  // namespace fnet

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 #include "common/store/hdf5_handle.hpp"
 #include "common/store/provenance_attributes.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <dds/dds.h>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 #include "common/transport/dds_entity.hpp"
 
 namespace fnet::dds {

@@ -1,6 +1,7 @@
 #include "server/fnet-analyze/run_source.hpp"
 
 #include "common/codec/run_csv.hpp"
+#include "common/run/run_names.hpp"
 #include "common/store/analysis_store.hpp"
 #include "common/store/run_file.hpp"
 #include "server/fnet-analyze/commands.hpp"

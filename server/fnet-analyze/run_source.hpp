@@ -6,7 +6,7 @@
 
 #include <boost/program_options.hpp>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet::analyze {
 

@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/build_info/build_info.hpp"
-#include "common/store/analysis_store.hpp"
+#include "common/run/run_names.hpp"
 #include "server/dem/checkpoint.hpp"
 #include "server/dem/csv_export.hpp"
 #include "server/dem/diagnostics.hpp"

@@ -6,6 +6,7 @@
 #include <boost/asio/post.hpp>
 
 #include "common/analysis/jamming.hpp"
+#include "common/run/run_names.hpp"
 
 namespace fnet::server {
 

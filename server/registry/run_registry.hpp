@@ -21,8 +21,8 @@
 
 #include <boost/asio/thread_pool.hpp>
 
-#include "common/analysis/run_frame.hpp"
 #include "common/analysis/run_pipeline.hpp"
+#include "common/run/run_frame.hpp"
 #include "common/store/analysis_store.hpp"
 
 namespace fnet::server {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet::testing {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/analysis/member_count.hpp"
+#include "common/run/member_count.hpp"
 #include "common/topology/frame.hpp"
 
 namespace fnet {

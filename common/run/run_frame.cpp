@@ -1,4 +1,4 @@
-#include "common/analysis/run_frame.hpp"
+#include "common/run/run_frame.hpp"
 
 namespace fnet {
 
