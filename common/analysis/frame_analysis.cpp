@@ -54,12 +54,12 @@ DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetr
 StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current,
                              EssentialConvention essential) {
   StepDistances out;
-  for (const ForceKind force : kForces)
-    for (int dim = 0; dim < 2; ++dim)
-      for (const Metric metric : kMetrics)
-        out.value[StepDistances::index(metric, dim, force)] =
-            diagram_distance(diagram_of(previous, force, dim), diagram_of(current, force, dim), metric, essential)
-                .value;
+  for (std::size_t k = 0; k < kStoredSeries.size(); ++k) {
+    const StoredSeries& s = kStoredSeries[k];
+    out.value[k] =
+        diagram_distance(diagram_of(previous, s.force, s.dim), diagram_of(current, s.force, s.dim), s.metric, essential)
+            .value;
+  }
   return out;
 }
 

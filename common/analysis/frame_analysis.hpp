@@ -4,8 +4,8 @@
 
 #include <array>
 #include <cstddef>
-#include <string_view>
 
+#include "common/analysis/stored_series.hpp"
 #include "common/distance/distance_metric.hpp"
 #include "common/distance/distance_result.hpp"
 #include "common/distance/essential_convention.hpp"
@@ -14,12 +14,6 @@
 #include "common/topology/persistence.hpp"
 
 namespace fnet {
-
-enum class Metric { bottleneck, wasserstein1, wasserstein2 };
-inline constexpr std::array<Metric, 3> kMetrics{Metric::bottleneck, Metric::wasserstein1, Metric::wasserstein2};
-inline constexpr std::array<ForceKind, 2> kForces{ForceKind::normal, ForceKind::tangential};
-
-std::string_view to_string(Metric metric);
 
 struct FrameDiagramSet {
   FrameDiagrams normal, tangential;
@@ -42,11 +36,10 @@ DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetr
 
 // The twelve exact distances between consecutive frames, indexed by step_index().
 struct StepDistances {
-  std::array<double, 12> value{};
+  std::array<double, kStoredSeries.size()> value{};
   double operator()(Metric metric, int dim, ForceKind force) const { return value[index(metric, dim, force)]; }
-  static std::size_t index(Metric metric, int dim, ForceKind force) {
-    return static_cast<std::size_t>(metric) * 4 + static_cast<std::size_t>(dim) * 2 +
-           (force == ForceKind::normal ? 0 : 1);
+  static constexpr std::size_t index(Metric metric, int dim, ForceKind force) {
+    return stored_series_index(metric, dim, force);
   }
 };
 

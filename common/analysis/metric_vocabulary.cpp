@@ -63,10 +63,6 @@ int check_dim(long long dim) {
   return static_cast<int>(dim);
 }
 
-std::string series_key(Metric metric, int dim, ForceKind force) {
-  return std::string(to_string(metric)) + "/pd" + std::to_string(dim) + "/" + std::string(to_string(force));
-}
-
 DistanceResult choice_distance(const Diagram& a, const Diagram& b, const MetricChoice& metric,
                                EssentialConvention essential, double delta) {
   return diagram_distance(a, b, metric.distance(), essential, delta);

@@ -38,8 +38,7 @@ MetricChoice parse_metric(std::string_view name, std::optional<double> q = std::
 // 0 | 1; throws std::invalid_argument naming the value otherwise.
 int check_dim(long long dim);
 
-// "wasserstein2/pd1/normal": the key of a stored series in the API and the stores.
-std::string series_key(Metric metric, int dim, ForceKind force);
+// series_key names a stored series (stored_series.hpp).
 
 // The distance a choice names, computed exactly (delta 0) or to relative error delta.
 DistanceResult choice_distance(const Diagram& a, const Diagram& b, const MetricChoice& metric,

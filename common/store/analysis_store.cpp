@@ -14,11 +14,12 @@ namespace {
 
 using h5::check;
 
-constexpr std::size_t kInfoBytes = 16384;   // one run announcement, as JSON
-constexpr std::size_t kReasonBytes = 1024;  // one rejection reason
-constexpr std::size_t kCounts = 6;          // vertices, edges, triangles of normal, then tangential
-constexpr std::size_t kOffsets = 5;         // start of the 4 diagrams in /points, and the end
-constexpr std::size_t kNetworkOffsets = 4;  // the frame's rows [begin, end) in particles, in the contacts
+constexpr std::size_t kInfoBytes = 16384;              // one run announcement, as JSON
+constexpr std::size_t kReasonBytes = 1024;             // one rejection reason
+constexpr std::size_t kCounts = 6;                     // vertices, edges, triangles of normal, then tangential
+constexpr std::size_t kOffsets = 5;                    // start of the 4 diagrams in /points, and the end
+constexpr std::size_t kSeries = kStoredSeries.size();  // columns of `distances`
+constexpr std::size_t kNetworkOffsets = 4;             // the frame's rows [begin, end) in particles, in the contacts
 
 h5::Datatype fixed_string(std::size_t bytes) {
   h5::Datatype type(H5Tcopy(H5T_C_S1), "H5Tcopy");
@@ -124,6 +125,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::write_attribute(root.get(), "schema", std::string(kStoreSchema));
     h5::write_attribute(root.get(), "run_id", run_id);
     h5::write_attribute(root.get(), "convention", std::string(kStoreConvention));
+    h5::write_attribute(root.get(), "series", stored_series_layout());
     write_provenance(root.get());
     const hid_t f = file_.get();
     h5::create_extendible(f, "announcements", fixed_string(kInfoBytes).get(), 0, 4);
@@ -131,7 +133,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
     for (const char* name : {"time", "rho", "z"}) h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
     h5::create_extendible(f, "previous", H5T_NATIVE_INT64, 0, 256);
-    h5::create_extendible(f, "distances", H5T_NATIVE_DOUBLE, 12, 256);
+    h5::create_extendible(f, "distances", H5T_NATIVE_DOUBLE, kSeries, 256);
     h5::create_extendible(f, "counts", H5T_NATIVE_UINT64, kCounts, 256);
     h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kOffsets, 256);
     h5::create_extendible(f, "points", H5T_NATIVE_DOUBLE, 2, 8192);
@@ -249,7 +251,7 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &f.header.rho, 1, 0);
   h5::append_rows(set("z"), H5T_NATIVE_DOUBLE, &f.header.z, 1, 0);
   h5::append_rows(set("previous"), H5T_NATIVE_INT64, &previous, 1, 0);
-  h5::append_rows(set("distances"), H5T_NATIVE_DOUBLE, f.distances.value.data(), 1, 12);
+  h5::append_rows(set("distances"), H5T_NATIVE_DOUBLE, f.distances.value.data(), 1, kSeries);
   h5::append_rows(set("counts"), H5T_NATIVE_UINT64, counts.data(), 1, kCounts);
   h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
   h5::append_rows(set("committed_at"), H5T_NATIVE_DOUBLE, &at, 1, 0);
@@ -279,6 +281,39 @@ void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
   h5::append_rows(set("rejected_frame"), H5T_NATIVE_UINT32, &r.index, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
 }
+
+namespace {
+
+// The column of `distances` holding each entry of kStoredSeries: the store's `series` attribute
+// names its columns; stores written before it have the order of kStoredSeries.
+std::array<std::size_t, kSeries> series_columns(hid_t root, const std::string& file) {
+  std::array<std::size_t, kSeries> column{};
+  for (std::size_t c = 0; c < kSeries; ++c) column[c] = c;
+  if (H5Aexists(root, "series") <= 0) return column;
+  const std::string layout = h5::read_string(root, "series", file);
+  std::vector<std::string> keys;
+  for (std::size_t at = 0; at <= layout.size();) {
+    const std::size_t end = std::min(layout.find(',', at), layout.size());
+    keys.push_back(layout.substr(at, end - at));
+    at = end + 1;
+  }
+  std::array<bool, kSeries> seen{};
+  if (keys.size() == kSeries)
+    for (std::size_t c = 0; c < kSeries; ++c) {
+      const auto s = parse_series_key(keys[c]);
+      if (!s) break;
+      const std::size_t k = stored_series_index(s->metric, s->dim, s->force);
+      if (seen[k]) break;
+      seen[k] = true;
+      column[k] = c;
+    }
+  if (std::find(seen.begin(), seen.end(), false) != seen.end())
+    throw h5::Error(file + ": attribute 'series' is '" + layout + "', expected a permutation of '" +
+                    stored_series_layout() + "'");
+  return column;
+}
+
+}  // namespace
 
 StoredRun read_store(const std::filesystem::path& path) {
   h5::quiet();
@@ -314,7 +349,8 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto rho = h5::read_doubles(g, "rho", 0, file);
   const auto z = h5::read_doubles(g, "z", 0, file);
   const auto previous = h5::read_int64s(g, "previous", 0, file);
-  const auto distances = h5::read_doubles(g, "distances", 12, file);
+  const auto column_of = series_columns(root.get(), file);
+  const auto distances = h5::read_doubles(g, "distances", kSeries, file);
   const auto counts = h5::read_uint64s(g, "counts", kCounts, file);
   const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
   const auto points = h5::read_doubles(g, "points", 2, file);
@@ -330,8 +366,8 @@ StoredRun read_store(const std::filesystem::path& path) {
   }
   // Committed frames: those every column covers (a killed writer may leave some columns longer).
   std::size_t n = frame.size();
-  for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(), distances.size() / 12,
-                                counts.size() / kCounts, offsets.size() / kOffsets})
+  for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(),
+                                distances.size() / kSeries, counts.size() / kCounts, offsets.size() / kOffsets})
     n = std::min(n, len);
   if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
@@ -344,7 +380,7 @@ StoredRun read_store(const std::filesystem::path& path) {
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
-    std::copy_n(&distances[k * 12], 12, a.distances.value.begin());
+    for (std::size_t c = 0; c < kSeries; ++c) a.distances.value[c] = distances[k * kSeries + column_of[c]];
     std::array<Diagram*, 4> diagrams{&a.diagrams.normal.pd0, &a.diagrams.normal.pd1, &a.diagrams.tangential.pd0,
                                      &a.diagrams.tangential.pd1};
     for (std::size_t d = 0; d < 4; ++d)

@@ -60,10 +60,8 @@ json summary_json(const RunSummary& s) {
 
 json point_json(const SeriesPoint& p) {
   json distances = json::object();
-  for (const Metric metric : kMetrics)
-    for (int dim = 0; dim < 2; ++dim)
-      for (const ForceKind force : kForces)
-        distances[series_key(metric, dim, force)] = p.previous ? json(p.distances(metric, dim, force)) : json(nullptr);
+  for (std::size_t k = 0; k < kStoredSeries.size(); ++k)
+    distances[series_key(kStoredSeries[k])] = p.previous ? json(p.distances.value[k]) : json(nullptr);
   return {{"run", p.run_id},
           {"frame", p.header.index},
           {"step", p.header.step},

@@ -18,15 +18,30 @@ STORE_SCHEMAS = ("fnet-store-1", "fnet-store-2")  # the second adds each frame's
 RUN_SCHEMAS = ("fnet-run-1", "fnet-run-2")
 
 
-def distance_column(metric, dim, force):
-    """The column of a store's `distances` holding one of its twelve distances."""
+def series_key(metric, dim, force):
+    """'wasserstein2/pd1/normal': how the API and a store's `series` attribute name a stored series."""
     if metric not in METRICS:
         raise ValueError(f"metric: the store holds {', '.join(METRICS)}, not {metric!r}")
     if dim not in (0, 1):
         raise ValueError(f"dim: 0 or 1, not {dim!r}")
     if force not in FORCES:
         raise ValueError(f"force: normal or tangential, not {force!r}")
-    return METRICS.index(metric) * 4 + dim * 2 + FORCES.index(force)
+    return f"{metric}/pd{dim}/{force}"
+
+
+# The columns of `distances` in stores written before the `series` attribute named them.
+_UNNAMED_LAYOUT = tuple(f"{m}/pd{d}/{f}" for m in METRICS for d in (0, 1) for f in FORCES)
+
+
+def distance_column(store_file, metric, dim, force):
+    """The column of a store's `distances` holding one of its twelve distances, as the store's
+    `series` attribute names them."""
+    key = series_key(metric, dim, force)
+    layout = store_file.attrs.get("series")
+    keys = _text(layout).split(",") if layout is not None else list(_UNNAMED_LAYOUT)
+    if key not in keys:
+        raise ValueError(f"{store_file.filename}: attribute 'series' does not name {key}")
+    return keys.index(key)
 
 
 def _text(value):
@@ -131,7 +146,7 @@ class Store(_SwmrFile):
         NaN for the first frame."""
         c = self._cols
         previous = c["previous"].astype(np.int64)
-        value = c["distances"][:, distance_column(metric, dim, force)].astype(np.float64)
+        value = c["distances"][:, distance_column(self.file, metric, dim, force)].astype(np.float64)
         value[previous < 0] = np.nan
         return Result(run=self.run_id, metric=metric, dim=dim, force=force, essential="floor",
                       frame=self.frames, step=c["step"].astype(np.int64), time=c["time"].astype(np.float64),
@@ -146,7 +161,7 @@ class Store(_SwmrFile):
 
     def diagram(self, frame, dim=0, force="normal"):
         """A frame's diagram as an (n, 2) array of birth, death (death -1: never dies)."""
-        distance_column("bottleneck", dim, force)  # checks dim and force
+        series_key("bottleneck", dim, force)  # checks dim and force
         d = FORCES.index(force) * 2 + dim  # the order of `offsets`: normal PD0, PD1, tangential PD0, PD1
         o = self._cols["offsets"][self._row(frame)]
         return np.array(self._points[o[d]:o[d + 1]], dtype=np.float64).reshape(-1, 2)

@@ -104,6 +104,28 @@ def test_store_holds_what_the_server_serves(simd_run):
                                                   c.diagram(int(index), run=RUN, dim=dim, force=force))
 
 
+def test_store_columns_follow_its_series_attribute(simd_run, tmp_path):
+    """A copy of the store with its distance columns (and the attribute naming them) reversed reads
+    back the same series: the reader follows the attribute, not a formula of its own."""
+    import h5py
+    server, _, _ = simd_run
+    copy = tmp_path / "reversed.h5"
+    # Copied member by member: the live store is open for SWMR writing, so it cannot be opened to write.
+    with h5py.File(server.store_path(RUN), "r", libver="latest", swmr=True) as src, h5py.File(copy, "w",
+                                                                                            libver="latest") as f:
+        for name in src:
+            src.copy(name, f)
+        f.attrs.update(src.attrs)
+        f["distances"][...] = np.flip(f["distances"][...], axis=1)
+        f.attrs["series"] = ",".join(reversed(str(f.attrs["series"]).split(",")))
+    with fnet.store.open_store(server.store_path(RUN)) as st, fnet.store.open_store(copy) as rev:
+        for metric in fnet.store.METRICS:
+            for dim in (0, 1):
+                for force in fnet.store.FORCES:
+                    np.testing.assert_array_equal(st.series(metric, dim, force)["value"],
+                                                  rev.series(metric, dim, force)["value"])
+
+
 def test_store_keeps_the_networks_the_daemon_sent(simd_run):
     server, out, _ = simd_run
     with fnet.store.open_store(server.store_path(RUN)) as st, fnet.store.open_run_file(out) as run_file:
