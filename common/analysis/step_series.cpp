@@ -24,6 +24,24 @@ void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> fr
   }
 }
 
+SeriesValues series_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const SeriesMeasure& measure,
+                           const FrameRange& range) {
+  SeriesValues out;
+  std::size_t end = frames.size();
+  while (out.first < end && range.from && frames[out.first]->header.index < *range.from) ++out.first;
+  while (end > out.first && range.to && frames[end - 1]->header.index > *range.to) --end;
+  std::vector<StepValue> top, bottom;
+  append_step_values(frames.first(end), measure.query, out.first, top);
+  if (measure.denominator) append_step_values(frames.first(end), *measure.denominator, out.first, bottom);
+  for (std::size_t k = 0; k < top.size(); ++k) {
+    if (!measure.denominator || !top[k].value)
+      out.value.push_back(top[k].value);
+    else
+      out.value.push_back(*top[k].value / *bottom[k].value);
+  }
+  return out;
+}
+
 std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift, std::size_t run) {
   std::vector<CurveSample> out;
   out.reserve(steps.size());

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/analysis/analyzed_frame.hpp"
@@ -23,6 +24,20 @@ struct StepQuery {
   EssentialConvention essential = EssentialConvention::floor;
 };
 
+// What a series measures: one distance, or with `denominator` the ratio d_B / d_Wq frame by frame
+// (query is then the bottleneck, its numerator).
+struct SeriesMeasure {
+  StepQuery query;
+  std::optional<StepQuery> denominator;
+  std::string ratio;  // "wasserstein1" | "wasserstein2" with a denominator, else empty
+};
+
+// Frame indices 'from'..'to', inclusive, each optional.
+struct FrameRange {
+  std::optional<std::uint32_t> from, to;
+  bool contains(std::uint32_t index) const { return (!from || index >= *from) && (!to || index <= *to); }
+};
+
 // One committed frame; `value` (possibly +inf) is its distance from the frame committed before it,
 // none for the first frame or one without a previous accepted frame.
 struct StepValue {
@@ -36,6 +51,16 @@ struct StepValue {
 // those committed since.
 void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
                         std::size_t from, std::vector<StepValue>& out);
+
+// The frames of `frames` (committed, in index order) that lie in `range`, and the value of each:
+// none for a frame without a predecessor; a ratio 0/0 is NaN, x/0 and an infinite distance +inf.
+// Computes only the frames in the range.
+struct SeriesValues {
+  std::size_t first = 0;  // frames[first + k] is the frame of value[k]
+  std::vector<std::optional<double>> value;
+};
+SeriesValues series_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const SeriesMeasure& measure,
+                           const FrameRange& range = {});
 
 // The samples a curve bins: each frame with a value, at rho - shift, as samples of realization `run`.
 std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift = 0, std::size_t run = 0);

@@ -21,7 +21,7 @@
 #include "server/api/block_methods.hpp"
 #include "server/api/connection_subscriptions.hpp"
 #include "server/api/ensemble_methods.hpp"
-#include "server/api/series_columns.hpp"
+#include "server/api/series_methods.hpp"
 
 namespace fnet::server {
 namespace {
@@ -93,40 +93,6 @@ json run_get(const Registry& registry, const json& params) {
   return out;
 }
 
-json series_get(const Registry& registry, const json& params) {
-  const MetricChoice metric = get_metric(params);
-  const int dim = get_dim(params);
-  const ForceKind force = get_force(params);
-  const EssentialConvention essential = get_essential(params);
-  const FrameRange range = get_frame_range(params);
-  const std::string run = resolve_run(registry, params);
-  const auto frames = registry.frames(run);
-  if (!frames) unknown_run(run);
-
-  json out = describe(metric, dim, force, essential);
-  out["run"] = run;
-  SeriesColumns columns;
-  std::shared_ptr<const AnalyzedFrame> before;  // the frame committed before the current one
-  for (const auto& f : *frames) {
-    const auto prev_frame = before;
-    before = f;
-    if (!range.contains(f->header.index)) continue;
-    if (!f->previous || !prev_frame) {
-      columns.add(*f, nullptr, false);
-      continue;
-    }
-    if (metric.stored && essential == EssentialConvention::floor) {
-      columns.add(*f, f->distances(*metric.stored, dim, force), false);
-      continue;
-    }
-    const DistanceResult r = choice_distance(diagram_of(prev_frame->diagrams, force, dim),
-                                             diagram_of(f->diagrams, force, dim), metric, essential);
-    columns.add(*f, r.infinite ? json(nullptr) : json(r.value), r.infinite);
-  }
-  columns.put(out);
-  return out;
-}
-
 json diagram_get(const Registry& registry, const json& params) {
   const std::uint32_t index = require_index(params, "frame");
   const int dim = get_dim(params);
@@ -150,10 +116,8 @@ json diagram_get(const Registry& registry, const json& params) {
 json distance_get(const Registry& registry, const json& params) {
   const std::uint32_t frame_a = require_index(params, "frame");
   const std::uint32_t frame_b = require_index(params, "other_frame");
-  const MetricChoice metric = get_metric(params);
-  const int dim = get_dim(params);
-  const ForceKind force = get_force(params);
-  const EssentialConvention essential = get_essential(params);
+  const StepQuery query = get_step_query(params);
+  const auto& [metric, dim, force, essential] = query;
   const double delta = get_number(params, "delta").value_or(0);
   if (!(delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
   const auto explain_terms = get_index(params, "explain");
@@ -169,7 +133,7 @@ json distance_get(const Registry& registry, const json& params) {
   const DistanceResult r = choice_distance(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
                                            metric, essential, delta);
   json out = to_json(r);
-  out.update(describe(metric, dim, force, essential));
+  out.update(describe(query));
   out["run"] = run_a;
   out["frame"] = frame_a;
   out["other_run"] = run_b;
@@ -257,6 +221,32 @@ class Subscriptions {
   const std::shared_ptr<ConnectionSubscriptions> held_;
 };
 
+// The params as an object, every name one the method accepts: a typo ("dimension") is an error,
+// not a silently applied default.
+json checked_params(const std::string& method, const Method& m, const json& params) {
+  if (params.is_array()) {
+    if (!params.empty())
+      throw Error(rpc::kInvalidParams, "params of '" + method + "' must be an object of named parameters");
+    return json::object();
+  }
+  for (const auto& [name, value] : params.items()) {
+    if (std::find(m.params.begin(), m.params.end(), name) != m.params.end()) continue;
+    json accepted = json::array();
+    std::string list;
+    for (const std::string_view p : m.params) {
+      accepted.push_back(p);
+      list += (list.empty() ? "" : ", ") + std::string(p);
+    }
+    throw Error(rpc::kInvalidParams,
+                "unknown parameter '" + name + "' for method '" + method + "' (" +
+                    (list.empty() ? std::string("it takes none") : "accepted: " + list) + ")",
+                {{"parameter", name}, {"accepted", accepted}});
+  }
+  return params;
+}
+
+}  // namespace
+
 // ---- the method table: what each method accepts drives the unknown-parameter check -------------
 
 MethodTable method_table(ApiContext& ctx) {
@@ -268,10 +258,7 @@ MethodTable method_table(ApiContext& ctx) {
   MethodTable table{
       {"runs.list", {{}, plain([&registry](const json&) { return runs_list(registry); })}},
       {"run.get", {{"run"}, plain([&registry](const json& p) { return run_get(registry, p); })}},
-      {"series.get",
-       {{"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"}, plain([&registry](const json& p) {
-          return find(p, "ratio") ? series_ratio_get(registry, p) : series_get(registry, p);
-        })}},
+      {"series.get", series_get_method(registry)},
       {"diagram.get",
        {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
       {"distance.get",
@@ -300,38 +287,14 @@ MethodTable method_table(ApiContext& ctx) {
   return table;
 }
 
-// The params as an object, every name one the method accepts: a typo ("dimension") is an error,
-// not a silently applied default.
-json checked_params(const std::string& method, const Method& m, const json& params) {
-  if (params.is_array()) {
-    if (!params.empty())
-      throw Error(rpc::kInvalidParams, "params of '" + method + "' must be an object of named parameters");
-    return json::object();
-  }
-  for (const auto& [name, value] : params.items()) {
-    if (std::find(m.params.begin(), m.params.end(), name) != m.params.end()) continue;
-    json accepted = json::array();
-    std::string list;
-    for (const std::string_view p : m.params) {
-      accepted.push_back(p);
-      list += (list.empty() ? "" : ", ") + std::string(p);
-    }
-    throw Error(rpc::kInvalidParams,
-                "unknown parameter '" + name + "' for method '" + method + "' (" +
-                    (list.empty() ? std::string("it takes none") : "accepted: " + list) + ")",
-                {{"parameter", name}, {"accepted", accepted}});
-  }
-  return params;
-}
-
-}  // namespace
-
 rpc::Handler make_api(ApiContext& ctx) {
   auto table = std::make_shared<const MethodTable>(method_table(ctx));
   return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Session>& session) -> json {
     const auto it = table->find(method);
     if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
-    return it->second.run(checked_params(method, it->second, params), session);
+    const json checked = checked_params(method, it->second, params);
+    const ReadingParams reading(it->second.params);
+    return it->second.run(checked, session);
   };
 }
 

@@ -31,6 +31,9 @@ struct Method {
 
 using MethodTable = std::map<std::string, Method, std::less<>>;
 
+// Every method by name, each with the parameters it declares beside the code that reads them.
+MethodTable method_table(ApiContext& context);
+
 rpc::Handler make_api(ApiContext& context);
 
 }  // namespace fnet::server

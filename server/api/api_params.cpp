@@ -22,7 +22,28 @@ using rpc::Error;
 }
 
 // A parameter given as null is taken as omitted.
+namespace {
+
+// The parameters the method running on this thread declared (none outside a method: tests).
+thread_local std::span<const std::string_view> t_declared;
+thread_local bool t_in_method = false;
+
+}  // namespace
+
+ReadingParams::ReadingParams(std::span<const std::string_view> declared)
+    : outer_(t_declared), outer_in_method_(t_in_method) {
+  t_declared = declared;
+  t_in_method = true;
+}
+
+ReadingParams::~ReadingParams() {
+  t_declared = outer_;
+  t_in_method = outer_in_method_;
+}
+
 const json* find(const json& params, std::string_view name) {
+  if (t_in_method && std::find(t_declared.begin(), t_declared.end(), name) == t_declared.end())
+    throw std::logic_error("a method read parameter '" + std::string(name) + "', which it does not declare");
   const auto it = params.find(name);
   return it == params.end() || it->is_null() ? nullptr : &*it;
 }
@@ -111,6 +132,41 @@ json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConventi
   if (m.q) out["q"] = *m.q;
   return out;
 }
+
+namespace {
+
+// dim, force and essential, after the metric.
+StepQuery with_selection(const json& params, MetricChoice metric) {
+  return {std::move(metric), get_dim(params), get_force(params), get_essential(params)};
+}
+
+}  // namespace
+
+StepQuery get_step_query(const json& params) { return with_selection(params, get_metric(params)); }
+
+SeriesMeasure get_series_measure(const json& params) {
+  SeriesMeasure m;
+  const auto ratio = get_string(params, "ratio");
+  if (!ratio) {
+    m.query = get_step_query(params);
+    return m;
+  }
+  if (*ratio != "wasserstein1" && *ratio != "wasserstein2")
+    invalid("ratio",
+            "parameter 'ratio' must be wasserstein1 or wasserstein2 (the ratio d_B / d_Wq), got '" + *ratio + "'");
+  m.ratio = *ratio;
+  const auto metric = get_string(params, "metric");
+  if (metric && *metric != "bottleneck")
+    invalid("metric", "parameter 'metric' must be bottleneck (or omitted) with 'ratio': the ratio is d_B / d_W" +
+                          ratio->substr(ratio->size() - 1) + ", got '" + *metric + "'");
+  if (find(params, "q")) invalid("q", "parameter 'q' is not taken with 'ratio' (d_B / d_W1 or d_B / d_W2)");
+  m.query = with_selection(params, parse_metric("bottleneck"));
+  m.denominator = m.query;
+  m.denominator->metric = parse_metric(*ratio);
+  return m;
+}
+
+json describe(const StepQuery& q) { return describe(q.metric, q.dim, q.force, q.essential); }
 
 // ---- runs ------------------------------------------------------------------------------------
 

@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
 
 #include "common/analysis/metric_vocabulary.hpp"
+#include "common/analysis/step_series.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
 #include "proto/json_rpc.hpp"
@@ -21,6 +23,21 @@ using json = nlohmann::json;
 
 [[noreturn]] void invalid(std::string_view name, const std::string& message);
 [[noreturn]] void wrong_type(std::string_view name, const char* expected, const json& got);
+// While one lives, the running method reads only the parameters it declared (Method::params):
+// find() throws std::logic_error for any other, so that what a method declares, and what the
+// unknown-parameter check and proto/api.md hold it to, is what it reads.
+class ReadingParams {
+ public:
+  explicit ReadingParams(std::span<const std::string_view> declared);
+  ~ReadingParams();
+  ReadingParams(const ReadingParams&) = delete;
+  ReadingParams& operator=(const ReadingParams&) = delete;
+
+ private:
+  std::span<const std::string_view> outer_;
+  bool outer_in_method_;
+};
+
 // A parameter given as null is taken as omitted.
 const json* find(const json& params, std::string_view name);
 std::optional<std::string> get_string(const json& params, std::string_view name);
@@ -32,6 +49,13 @@ ForceKind get_force(const json& params);
 EssentialConvention get_essential(const json& params);
 MetricChoice get_metric(const json& params);
 json describe(const MetricChoice& m, int dim, ForceKind force, EssentialConvention essential);
+// metric (with q), dim, force and essential: the one reading of the quartet every method that
+// measures a distance takes.
+StepQuery get_step_query(const json& params);
+// The quartet, or with `ratio` (wasserstein1 | wasserstein2) the ratio d_B / d_Wq: the metric may
+// then be omitted and must be the bottleneck if given, and q is not taken.
+SeriesMeasure get_series_measure(const json& params);
+json describe(const StepQuery& query);
 
 [[noreturn]] void unknown_run(const std::string& run);
 // The same error, its message and data.close naming the server's runs closest to `run`.

@@ -32,10 +32,8 @@ json blocks_get(const Registry& registry, const json& params) {
   const std::uint32_t frame_a = require_index(params, "frame");
   const std::uint32_t frame_b = require_index(params, "other_frame");
   const int k = get_k(params);
-  const MetricChoice metric = get_metric(params);
-  const int dim = get_dim(params);
-  const ForceKind force = get_force(params);
-  const EssentialConvention essential = get_essential(params);
+  const StepQuery query = get_step_query(params);
+  const auto& [metric, dim, force, essential] = query;
   const std::string run = resolve_run(registry, params);
   if (!registry.frame(run, frame_a)) unknown_frame(run, frame_a);
   if (!registry.frame(run, frame_b)) unknown_frame(run, frame_b);

@@ -32,10 +32,8 @@ enum class CurveAxis { rho, rho_minus_rho_j };
 
 // One ensemble.series request, every parameter checked.
 struct CurveRequest {
-  std::string ensemble, run;             // exactly one is non-empty
-  StepQuery query;                       // the distance binned; with a ratio, its numerator d_B
-  std::optional<StepQuery> denominator;  // with a ratio: d_Wq
-  std::string ratio;                     // "wasserstein1" | "wasserstein2" | empty
+  std::string ensemble, run;  // exactly one is non-empty
+  SeriesMeasure measure;      // the distance binned, or the ratio d_B / d_Wq
   RhoBinning binning;
   CurveAxis axis = CurveAxis::rho;
 };
@@ -45,40 +43,6 @@ struct CurveRequest {
               {{"ensemble", ensemble}});
 }
 
-// The ratio named by `ratio`, or none; with one the metric is the bottleneck (its numerator).
-std::optional<MetricChoice> get_ratio(const json& params, std::string& name) {
-  const auto ratio = get_string(params, "ratio");
-  if (!ratio) return std::nullopt;
-  if (*ratio != "wasserstein1" && *ratio != "wasserstein2")
-    invalid("ratio",
-            "parameter 'ratio' must be wasserstein1 or wasserstein2 (the ratio d_B / d_Wq), got '" + *ratio + "'");
-  name = *ratio;
-  return parse_metric(*ratio);
-}
-
-// metric, q, dim, force, essential and ratio as series.get takes them.
-std::pair<StepQuery, std::optional<StepQuery>> get_step_query(const json& params, std::string& ratio_name) {
-  const auto denominator = get_ratio(params, ratio_name);
-  StepQuery query;
-  if (denominator) {
-    const auto metric = get_string(params, "metric");
-    if (metric && *metric != "bottleneck")
-      invalid("metric", "parameter 'metric' must be bottleneck (or omitted) with 'ratio': the ratio is d_B / d_W" +
-                            ratio_name.substr(ratio_name.size() - 1) + ", got '" + *metric + "'");
-    if (find(params, "q")) invalid("q", "parameter 'q' is not taken with 'ratio' (d_B / d_W1 or d_B / d_W2)");
-    query.metric = parse_metric("bottleneck");
-  } else {
-    query.metric = get_metric(params);
-  }
-  query.dim = get_dim(params);
-  query.force = get_force(params);
-  query.essential = get_essential(params);
-  if (!denominator) return {query, std::nullopt};
-  StepQuery d = query;
-  d.metric = *denominator;
-  return {query, d};
-}
-
 // Every parameter checked before any run or ensemble is looked up.
 CurveRequest get_curve_request(const Registry& registry, const json& params) {
   CurveRequest r;
@@ -86,7 +50,7 @@ CurveRequest get_curve_request(const Registry& registry, const json& params) {
   if (ensemble.has_value() == run.has_value())
     invalid("ensemble", ensemble ? "give 'ensemble' or 'run', not both"
                                  : "missing parameter 'ensemble' (or 'run', for one run's curve)");
-  std::tie(r.query, r.denominator) = get_step_query(params, r.ratio);
+  r.measure = get_series_measure(params);
   const auto width = get_number(params, "bin_width");
   const json* bins = find(params, "bins");
   if (width && bins) invalid("bin_width", "give 'bin_width' or 'bins', not both");
@@ -173,11 +137,11 @@ Curve compute_curve(const Registry& registry, const CurveRequest& r, StepCache& 
       const std::vector<CurveSample> s = curve_samples(steps, shift, run);
       to.insert(to.end(), s.begin(), s.end());
     };
-    add(numerator, steps_of(m, r.query, cache.numerator));
-    if (r.denominator) add(denominator, steps_of(m, *r.denominator, cache.denominator));
+    add(numerator, steps_of(m, r.measure.query, cache.numerator));
+    if (r.measure.denominator) add(denominator, steps_of(m, *r.measure.denominator, cache.denominator));
   }
   c.bins = bin_curve(numerator, r.binning);
-  if (r.denominator) c.bins = ratio_curve(c.bins, bin_curve(denominator, r.binning));
+  if (r.measure.denominator) c.bins = ratio_curve(c.bins, bin_curve(denominator, r.binning));
   return c;
 }
 
@@ -219,12 +183,12 @@ void put_bins(json& out, const std::vector<CurveBin>& bins) {
 
 // What every answer about a curve says it is, and the members it was computed over.
 json curve_head(const CurveRequest& r, const Curve& c) {
-  json out = describe(r.query.metric, r.query.dim, r.query.force, r.query.essential);
+  json out = describe(r.measure.query);
   out["ensemble"] = r.ensemble.empty() ? json(nullptr) : json(r.ensemble);
   out["run"] = r.run.empty() ? json(nullptr) : json(r.run);
   out["runs"] = strings(c.runs);
   out["axis"] = r.axis == CurveAxis::rho ? "rho" : "rho_minus_rho_j";
-  out["ratio"] = r.ratio.empty() ? json(nullptr) : json(r.ratio);
+  out["ratio"] = r.measure.ratio.empty() ? json(nullptr) : json(r.measure.ratio);
   if (r.binning.count > 0)
     out["bins"] = r.binning.count;
   else
@@ -478,31 +442,6 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
 };
 
 }  // namespace
-
-json series_ratio_get(const Registry& registry, const json& params) {
-  std::string ratio;
-  const auto [numerator, denominator] = get_step_query(params, ratio);
-  const FrameRange range = get_frame_range(params);
-  const std::string run = resolve_run(registry, params);
-  const auto frames = registry.frames(run);
-  if (!frames) unknown_run(run);
-  std::vector<StepValue> top, bottom;
-  append_step_values(*frames, numerator, 0, top);
-  append_step_values(*frames, *denominator, 0, bottom);
-
-  json out = describe(numerator.metric, numerator.dim, numerator.force, numerator.essential);
-  out["ratio"] = ratio;
-  out["run"] = run;
-  SeriesColumns columns;
-  for (std::size_t k = 0; k < frames->size(); ++k) {
-    const AnalyzedFrame& f = *(*frames)[k];
-    if (!range.contains(f.header.index)) continue;
-    const double v = top[k].value ? *top[k].value / *bottom[k].value : std::numeric_limits<double>::quiet_NaN();
-    columns.add(f, std::isfinite(v) ? json(v) : json(nullptr), std::isinf(v));
-  }
-  columns.put(out);
-  return out;
-}
 
 MethodTable ensemble_methods(ApiContext& ctx) {
   Registry& registry = ctx.registry;

@@ -8,14 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "common/analysis/analyzed_frame.hpp"
+#include "common/analysis/step_series.hpp"
 
 namespace fnet::server {
 
 // 'from' and 'to', inclusive, each optional; error -32602 on 'from' when from > to.
-struct FrameRange {
-  std::optional<std::uint32_t> from, to;
-  bool contains(std::uint32_t index) const { return (!from || index >= *from) && (!to || index <= *to); }
-};
 FrameRange get_frame_range(const nlohmann::json& params);
 
 // frame, step, time, rho, z, previous and value, one entry per frame added; `infinite` too, put
