@@ -191,13 +191,13 @@ class Subscriptions {
         held_(std::make_shared<ConnectionSubscriptions>(ctx.registry, ctx.max_subscriptions_per_connection,
                                                         "subscription")) {}
 
-  json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+  json subscribe(const json& params, const std::shared_ptr<rpc::Peer>& session) {
     const auto since = get_index(params, "since");
     const std::string run = get_string(params, "run").value_or("");
     Registry& registry = ctx_.registry;
     if (!run.empty() && !registry.has_run(run)) unknown_run(registry, run);
     held_->check_room(*session);
-    std::weak_ptr<rpc::Session> weak = session;
+    std::weak_ptr<rpc::Peer> weak = session;
     const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
       const auto s = weak.lock();
       if (!s) return false;
@@ -210,7 +210,7 @@ class Subscriptions {
     return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
   }
 
-  json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+  json unsubscribe(const json& params, const std::shared_ptr<rpc::Peer>& session) {
     const std::uint32_t id = require_index(params, "subscription");
     held_->remove(*session, id);
     return {{"unsubscribed", id}};
@@ -253,7 +253,7 @@ MethodTable method_table(ApiContext& ctx) {
   Registry& registry = ctx.registry;
   const auto subscriptions = std::make_shared<Subscriptions>(ctx);
   const auto plain = [](auto fn) {
-    return [fn](const json& params, const std::shared_ptr<rpc::Session>&) { return fn(params); };
+    return [fn](const json& params, const std::shared_ptr<rpc::Peer>&) { return fn(params); };
   };
   MethodTable table{
       {"runs.list", {{}, plain([&registry](const json&) { return runs_list(registry); })}},
@@ -269,12 +269,12 @@ MethodTable method_table(ApiContext& ctx) {
         plain([&registry](const json& p) { return blocks_get(registry, p); })}},
       {"series.subscribe",
        {{"run", "since"},
-        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {
           return subscriptions->subscribe(p, s);
         }}},
       {"series.unsubscribe",
        {{"subscription"},
-        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {
           return subscriptions->unsubscribe(p, s);
         }}},
       {"server.status", {{}, plain([&ctx](const json&) { return server_status(ctx); })}},
@@ -289,7 +289,7 @@ MethodTable method_table(ApiContext& ctx) {
 
 rpc::Handler make_api(ApiContext& ctx) {
   auto table = std::make_shared<const MethodTable>(method_table(ctx));
-  return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Session>& session) -> json {
+  return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session) -> json {
     const auto it = table->find(method);
     if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
     const json checked = checked_params(method, it->second, params);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "server/registry/run_registry.hpp"
-#include "server/rpc/rpc_server.hpp"
+#include "server/rpc/peer.hpp"
 
 namespace fnet::server {
 
@@ -26,7 +26,7 @@ struct ApiContext {
 // One method: every parameter it accepts (any other is an error, before it runs) and what it does.
 struct Method {
   std::vector<std::string_view> params;
-  std::function<nlohmann::json(const nlohmann::json& params, const std::shared_ptr<rpc::Session>& session)> run;
+  std::function<nlohmann::json(const nlohmann::json& params, const std::shared_ptr<rpc::Peer>& session)> run;
 };
 
 using MethodTable = std::map<std::string, Method, std::less<>>;

@@ -10,7 +10,7 @@ ConnectionSubscriptions::ConnectionSubscriptions(Registry& registry, std::size_t
                                                  std::function<void(std::uint64_t)> forget)
     : registry_(registry), limit_(limit), kind_(std::move(kind)), forget_(std::move(forget)) {}
 
-void ConnectionSubscriptions::check_room(const rpc::Session& session) const {
+void ConnectionSubscriptions::check_room(const rpc::Peer& session) const {
   std::lock_guard lock(mutex_);
   const auto it = sessions_.find(session.id());
   const std::size_t held = it == sessions_.end() ? 0 : it->second.size();
@@ -19,7 +19,7 @@ void ConnectionSubscriptions::check_room(const rpc::Session& session) const {
                      "at most " + std::to_string(limit_) + " " + kind_ + "s per connection");
 }
 
-void ConnectionSubscriptions::add(const std::shared_ptr<rpc::Session>& session, std::uint64_t id) {
+void ConnectionSubscriptions::add(const std::shared_ptr<rpc::Peer>& session, std::uint64_t id) {
   bool first = false;
   {
     std::lock_guard lock(mutex_);
@@ -31,7 +31,7 @@ void ConnectionSubscriptions::add(const std::shared_ptr<rpc::Session>& session, 
   if (first) session->on_close([self = shared_from_this(), sid = session->id()] { self->release(sid); });
 }
 
-void ConnectionSubscriptions::remove(const rpc::Session& session, std::uint64_t id) {
+void ConnectionSubscriptions::remove(const rpc::Peer& session, std::uint64_t id) {
   bool found = false;
   {
     std::lock_guard lock(mutex_);
@@ -43,7 +43,7 @@ void ConnectionSubscriptions::remove(const rpc::Session& session, std::uint64_t 
   end(id);
 }
 
-void ConnectionSubscriptions::drop(const rpc::Session& session, std::uint64_t id) {
+void ConnectionSubscriptions::drop(const rpc::Peer& session, std::uint64_t id) {
   {
     std::lock_guard lock(mutex_);
     const auto it = sessions_.find(session.id());

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "server/registry/run_registry.hpp"
-#include "server/rpc/rpc_server.hpp"
+#include "server/rpc/peer.hpp"
 
 namespace fnet::server {
 
@@ -29,13 +29,13 @@ class ConnectionSubscriptions : public std::enable_shared_from_this<ConnectionSu
                           std::function<void(std::uint64_t)> forget = {});
 
   // Error -32003 when the connection already holds `limit` of this kind.
-  void check_room(const rpc::Session& session) const;
+  void check_room(const rpc::Peer& session) const;
   // Records `id` as the connection's; the first one hooks the release of them all on close.
-  void add(const std::shared_ptr<rpc::Session>& session, std::uint64_t id);
+  void add(const std::shared_ptr<rpc::Peer>& session, std::uint64_t id);
   // Ends the connection's subscription `id`; error -32602 on 'subscription' when it holds none such.
-  void remove(const rpc::Session& session, std::uint64_t id);
+  void remove(const rpc::Peer& session, std::uint64_t id);
   // Ends `id` without the check: a subscription that failed after it was added.
-  void drop(const rpc::Session& session, std::uint64_t id);
+  void drop(const rpc::Peer& session, std::uint64_t id);
 
  private:
   void end(std::uint64_t id);

@@ -298,7 +298,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     if (worker_.joinable()) worker_.join();
   }
 
-  json subscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+  json subscribe(const json& params, const std::shared_ptr<rpc::Peer>& session) {
     Registry& registry = ctx_.registry;
     auto sub = std::make_shared<Subscription>();
     sub->request = get_curve_request(registry, params);
@@ -341,7 +341,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     return out;
   }
 
-  json unsubscribe(const json& params, const std::shared_ptr<rpc::Session>& session) {
+  json unsubscribe(const json& params, const std::shared_ptr<rpc::Peer>& session) {
     const std::uint32_t id = require_index(params, "subscription");
     held_->remove(*session, id);
     return {{"unsubscribed", id}};
@@ -352,7 +352,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     std::mutex mutex;  // held while its curve is computed and sent
     std::uint64_t id = 0;
     CurveRequest request;
-    std::weak_ptr<rpc::Session> session;
+    std::weak_ptr<rpc::Peer> session;
     StepCache cache;
     std::vector<CurveBin> sent;  // the bins as the subscriber has them
   };
@@ -450,18 +450,16 @@ MethodTable ensemble_methods(ApiContext& ctx) {
                                                    "essential", "bin_width", "bins",   "axis", "ratio"};
   return {
       {"ensembles.list",
-       {{}, [&registry](const json&, const std::shared_ptr<rpc::Session>&) { return ensembles_list(registry); }}},
+       {{}, [&registry](const json&, const std::shared_ptr<rpc::Peer>&) { return ensembles_list(registry); }}},
       {"ensemble.series",
        {curve_params,
-        [&registry](const json& p, const std::shared_ptr<rpc::Session>&) { return ensemble_series(registry, p); }}},
+        [&registry](const json& p, const std::shared_ptr<rpc::Peer>&) { return ensemble_series(registry, p); }}},
       {"ensemble.subscribe",
-       {curve_params,
-        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
-          return subscriptions->subscribe(p, s);
-        }}},
+       {curve_params, [subscriptions](const json& p,
+                                      const std::shared_ptr<rpc::Peer>& s) { return subscriptions->subscribe(p, s); }}},
       {"ensemble.unsubscribe",
        {{"subscription"},
-        [subscriptions](const json& p, const std::shared_ptr<rpc::Session>& s) {
+        [subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {
           return subscriptions->unsubscribe(p, s);
         }}},
   };

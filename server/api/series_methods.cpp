@@ -36,9 +36,8 @@ json series_get(const Registry& registry, const json& params) {
 }  // namespace
 
 Method series_get_method(const Registry& registry) {
-  return {
-      {"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"},
-      [&registry](const json& params, const std::shared_ptr<rpc::Session>&) { return series_get(registry, params); }};
+  return {{"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"},
+          [&registry](const json& params, const std::shared_ptr<rpc::Peer>&) { return series_get(registry, params); }};
 }
 
 }  // namespace fnet::server

@@ -14,7 +14,7 @@ namespace {
 std::atomic<std::uint64_t> next_session_id{1};
 
 // Validates one request object and runs it; returns the response, or null for a notification.
-json dispatch(const json& request, const Handler& handler, const std::shared_ptr<Session>& session) {
+json dispatch(const json& request, const Handler& handler, const std::shared_ptr<Peer>& peer) {
   const bool has_id = request.is_object() && request.contains("id");
   const json id = has_id ? request["id"] : json(nullptr);
   if (!request.is_object()) return error_response(nullptr, kInvalidRequest, "a request must be a JSON object");
@@ -28,7 +28,7 @@ json dispatch(const json& request, const Handler& handler, const std::shared_ptr
   if (!params.is_object() && !params.is_array())
     return error_response(id, kInvalidRequest, "'params' must be an object or an array");
   try {
-    json result = handler(request["method"].get<std::string>(), params, session);
+    json result = handler(request["method"].get<std::string>(), params, peer);
     return has_id ? response(id, std::move(result)) : json();
   } catch (const Error& e) {
     return has_id ? error_response(id, e.code(), e.what(), e.data()) : json();

@@ -18,6 +18,7 @@
 #include <boost/asio.hpp>
 
 #include "proto/json_rpc.hpp"
+#include "server/rpc/peer.hpp"
 
 namespace fnet::rpc {
 
@@ -27,25 +28,18 @@ struct ServerLimits {
   std::size_t max_queued_bytes = 16 << 20;  // unread output beyond this drops the client
 };
 
-class Session;
-
-// Called on a server thread for each well-formed request; returns the result or throws rpc::Error.
-using Handler =
-    std::function<json(const std::string& method, const json& params, const std::shared_ptr<Session>& session)>;
-
-class Session : public std::enable_shared_from_this<Session> {
+// One TCP connection: newline-delimited requests in, responses and notifications out.
+class Session final : public Peer, public std::enable_shared_from_this<Session> {
  public:
   Session(boost::asio::ip::tcp::socket socket, const ServerLimits& limits, const Handler& handler,
           std::function<void()> on_end);
   ~Session();
 
   void start();
-  // Queues one JSON message for this client; thread-safe. Drops the client when its unread
-  // output exceeds the limit. Returns false once the session is closed.
-  bool send(const json& message);
-  std::uint64_t id() const { return id_; }
-  // Called once when the session ends (to release subscriptions).
-  void on_close(std::function<void()> fn);
+  // Drops the client when its unread output exceeds max_queued_bytes.
+  bool send(const json& message) override;
+  std::uint64_t id() const override { return id_; }
+  void on_close(std::function<void()> fn) override;
 
  private:
   void read_next();

@@ -1,0 +1,31 @@
+// What the methods know of the client that called them, whatever carries its messages (a TCP
+// connection, rpc_server.hpp; the next transport another implementation): it takes messages at
+// any time from any thread, has an id, and says when it ends.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "proto/json_rpc.hpp"
+
+namespace fnet::rpc {
+
+class Peer {
+ public:
+  virtual ~Peer() = default;
+  // Queues one JSON message; thread-safe and never blocks. A peer whose unread output exceeds its
+  // transport's bound is dropped. Returns false once the peer is closed.
+  virtual bool send(const json& message) = 0;
+  // Unique among the peers of this process.
+  virtual std::uint64_t id() const = 0;
+  // Called once when the peer ends; at once when it has ended.
+  virtual void on_close(std::function<void()> fn) = 0;
+};
+
+// The methods as every transport calls them: on a transport's thread, for each well-formed request;
+// returns the result or throws rpc::Error. They see the caller as a Peer only.
+using Handler = std::function<json(const std::string& method, const json& params, const std::shared_ptr<Peer>& peer)>;
+
+}  // namespace fnet::rpc
