@@ -17,7 +17,7 @@
 
 namespace fnet::client {
 
-// Documented in --help and README.
+// Documented in --help and deploy/README.md (exit codes).
 enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2, kUnreachable = 3, kUnknown = 4, kServerError = 5 };
 
 struct Endpoint {
