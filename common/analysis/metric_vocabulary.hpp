@@ -38,6 +38,10 @@ MetricChoice parse_metric(std::string_view name, std::optional<double> q = std::
 // 0 | 1; throws std::invalid_argument naming the value otherwise.
 int check_dim(long long dim);
 
+// The diagram a request means when it names none: PD1, the loops, as proto/api.md documents it for
+// every front end (the API, fnetctl, fnet-analyze; the Python package states the same value).
+inline constexpr int kDefaultDim = 1;
+
 // "wasserstein2/pd1/normal": the key of a stored series in the API and the stores.
 std::string series_key(Metric metric, int dim, ForceKind force);
 
