@@ -62,7 +62,7 @@ if [ -t 1 ]; then watch_mode=(); else watch_mode=(--plain); fi
 "$build/bin/fnetctl" --port "$port" watch --run "$run_id" --until-complete "${watch_mode[@]}"
 
 echo
-echo "== fnetctl query --metric wasserstein2 --run $run_id (PD0, normal forces) =="
+echo "== fnetctl query --metric wasserstein2 --run $run_id (PD1, normal forces) =="
 "$build/bin/fnetctl" --port "$port" query --metric wasserstein2 --run "$run_id"
 kill -0 "$server_pid" 2>/dev/null || fail "fnet-server stopped during the demo (see $data/server.log)"
 for f in "$data/$run_id.h5" "$data/$run_id.run.h5"; do [ -f "$f" ] || fail "$f was not written"; done

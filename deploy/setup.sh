@@ -13,8 +13,8 @@ packages=(
   libgtest-dev libgmock-dev googletest clang-format
   # independent oracles used by tests and benchmarks
   libgudhi-dev python3 python3-gudhi python3-numpy python3-scipy python3-pot python3-h5py
-  # the Python client (client/python) and its tests
-  python3-matplotlib python3-pytest python3-yaml
+  # the Python client (client/python) and its tests; pip install ./client/python into a venv
+  python3-matplotlib python3-pytest python3-yaml python3-venv python3-wheel
   lammps
   # process tools used by end-to-end tests
   procps iproute2 netcat-openbsd

@@ -107,7 +107,8 @@ void format_option(const std::string& format, std::initializer_list<const char*>
 
 void SeriesOptions::add(po::options_description& o, bool with_metric, bool metric_required) {
   o.add_options()("help,h", "show this help")("run", po::value(&run), "run id (default: the newest run)")(
-      "dim", po::value(&dim)->default_value(0), "homology dimension: 0 (components) or 1 (loops)")(
+      "dim", po::value(&dim)->default_value(kDefaultDim),
+      "homology dimension: 0 (components) or 1 (loops); the default is the API's, proto/api.md")(
       "force", po::value(&force)->default_value("normal"), "normal or tangential force network");
   if (with_metric) {
     auto* value = po::value(&metric);

@@ -17,7 +17,7 @@
 
 namespace fnet::client {
 
-// Documented in --help and README.
+// Documented in --help and deploy/README.md (exit codes).
 enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2, kUnreachable = 3, kUnknown = 4, kServerError = 5 };
 
 struct Endpoint {
@@ -47,7 +47,7 @@ void format_option(const std::string& format, std::initializer_list<const char*>
 // naming the flag. Every command that reads one series or frame pair takes them.
 struct SeriesOptions {
   std::string run, force = "normal", essential = "floor", metric;
-  long long dim = 0;
+  long long dim = kDefaultDim;
   double q = 0;
 
   // Adds --help too. `metric_required` false: the command checks --metric itself (query: --ratio

@@ -111,11 +111,11 @@ std::optional<WatchOptions> parse_watch(const std::vector<std::string>& args) {
       "options");
   WatchOptions w;
   std::string metric = "wasserstein2", force = "normal", series = "all";
-  long long dim = 0;
+  long long dim = kDefaultDim;
   o.add_options()("help,h", "show this help")("run", po::value(&w.run), "run id (default: the newest run)")(
       "metric", po::value(&metric)->default_value("wasserstein2"),
-      "series of the trend line: bottleneck, wasserstein1 or wasserstein2")("dim", po::value(&dim)->default_value(0),
-                                                                            "homology dimension of the trend: 0 or 1")(
+      "series of the trend line: bottleneck, wasserstein1 or wasserstein2")(
+      "dim", po::value(&dim)->default_value(kDefaultDim), "homology dimension of the trend: 0 or 1")(
       "force", po::value(&force)->default_value("normal"), "force network of the trend: normal or tangential")(
       "plain", po::bool_switch(&w.plain), "one line per frame instead of a screen redrawn in place")(
       "until-complete", po::bool_switch(&w.until_complete), "exit when the run is complete")(

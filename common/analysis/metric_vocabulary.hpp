@@ -38,6 +38,10 @@ MetricChoice parse_metric(std::string_view name, std::optional<double> q = std::
 // 0 | 1; throws std::invalid_argument naming the value otherwise.
 int check_dim(long long dim);
 
+// The diagram a request means when it names none: PD1, the loops, as proto/api.md documents it for
+// every front end (the API, fnetctl, fnet-analyze; the Python package states the same value).
+inline constexpr int kDefaultDim = 1;
+
 // series_key names a stored series (stored_series.hpp).
 
 // The distance a choice names, computed exactly (delta 0) or to relative error delta.

@@ -85,7 +85,7 @@ std::optional<double> get_number(const json& params, std::string_view name) {
 
 int get_dim(const json& params) {
   const json* v = find(params, "dim");
-  if (!v) return 0;
+  if (!v) return kDefaultDim;
   if (!v->is_number_integer()) wrong_type("dim", "an integer, 0 or 1", *v);
   // Read as the widest integer: 2^32 once read as an int was dim 0.
   const long long dim = v->is_number_unsigned() && v->get<std::uint64_t>() > std::numeric_limits<long long>::max()

@@ -57,11 +57,12 @@ int distance_command(const std::vector<std::string>& args) {
   std::string metric, essential = "floor";
   std::vector<std::string> files;
   double q = 0, delta = 0;
-  long long dim = 1;
+  long long dim = kDefaultDim;
   options.add_options()("help,h", "show this help")(
       "metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2, or wasserstein (with --q)")(
       "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
-      "dim", po::value(&dim)->default_value(1), "which diagram: 0 (pd0) or 1 (pd1)")(
+      "dim", po::value(&dim)->default_value(kDefaultDim),
+      "which diagram: 0 (pd0) or 1 (pd1); the default is the API's, proto/api.md")(
       "delta", po::value(&delta)->default_value(0), "0: exact; D > 0: certified relative error D")(
       "essential", po::value(&essential)->default_value("floor"),
       "never-dying classes: floor (die at 0), sentinel (death -1 literally), separate (matched among themselves)")(

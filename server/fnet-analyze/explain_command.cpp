@@ -43,11 +43,12 @@ int explain_command(const std::vector<std::string>& args) {
   std::string metric, essential = "floor", force = "normal", format = "table", particles_a, particles_b;
   std::vector<std::string> files;
   double q = 0;
-  long long dim = 1, k = 5;
+  long long dim = kDefaultDim, k = 5;
   options.add_options()("help,h", "show this help")(
       "metric", po::value(&metric)->required(), "bottleneck, wasserstein1, wasserstein2, or wasserstein (with --q)")(
       "q", po::value(&q), "the exponent of --metric wasserstein: a real number >= 1")(
-      "dim", po::value(&dim)->default_value(1), "which diagram: 0 (pd0) or 1 (pd1)")(
+      "dim", po::value(&dim)->default_value(kDefaultDim),
+      "which diagram: 0 (pd0) or 1 (pd1); the default is the API's, proto/api.md")(
       "force", po::value(&force)->default_value("normal"), "which force network: normal or tangential")(
       "essential", po::value(&essential)->default_value("floor"),
       "never-dying classes: floor (die at 0), sentinel (death -1 literally), separate (matched among themselves)")(

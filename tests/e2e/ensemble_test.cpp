@@ -237,14 +237,20 @@ TEST_F(Ensemble, SeriesEqualsTheBinsOfItsMembersSeries) {
   };
   const std::vector<Case> cases = {
       {"bottleneck pd1, width", {{"metric", "bottleneck"}, {"dim", 1}}, {{"bin_width", 0.05}}, false},
-      {"W2 pd0 tangential, count", {{"metric", "wasserstein2"}, {"force", "tangential"}}, {{"bins", 4}}, false},
+      {"W2 pd0 tangential, count",
+       {{"metric", "wasserstein2"}, {"dim", 0}, {"force", "tangential"}},
+       {{"bins", 4}},
+       false},
       {"bottleneck pd1 against rho - rho_J", {{"metric", "bottleneck"}, {"dim", 1}}, {{"bin_width", 0.03}}, true},
       {"W q=3 pd1 (not stored)", {{"metric", "wasserstein"}, {"q", 3}, {"dim", 1}}, {{"bin_width", 0.05}}, false},
       {"sentinel, count, against rho - rho_J",
-       {{"metric", "wasserstein1"}, {"essential", "sentinel"}},
+       {{"metric", "wasserstein1"}, {"dim", 0}, {"essential", "sentinel"}},
        {{"bins", 3}},
        true},
-      {"separate: infinite bins", {{"metric", "bottleneck"}, {"essential", "separate"}}, {{"bin_width", 0.1}}, false},
+      {"separate: infinite bins",
+       {{"metric", "bottleneck"}, {"dim", 0}, {"essential", "separate"}},
+       {{"bin_width", 0.1}},
+       false},
   };
   std::size_t pooled_differs = 0;  // bins where the mean over runs is not the mean over frames
   for (const Case& c : cases) {

@@ -177,7 +177,7 @@ TEST_F(Fnetctl, RangesPastTheEndDistanceTablesAndAWatchForAMissingRun) {
   const Outcome table =
       ctl({"distance", "--run", "stored", "--frame", "0", "--other-frame", "2", "--metric", "wasserstein2"});
   ASSERT_EQ(table.code, 0) << table.err;
-  EXPECT_THAT(table.out, AllOf(HasSubstr("run stored frame 0 -> stored frame 2: wasserstein2, PD0, normal"),
+  EXPECT_THAT(table.out, AllOf(HasSubstr("run stored frame 0 -> stored frame 2: wasserstein2, PD1, normal"),
                                HasSubstr("exact   yes")));
   std::smatch value;
   ASSERT_TRUE(std::regex_search(table.out, value, std::regex(R"(value\s+(\S+))"))) << table.out;
@@ -216,7 +216,7 @@ TEST_F(Fnetctl, RangesPastTheEndDistanceTablesAndAWatchForAMissingRun) {
 TEST_F(Fnetctl, DiagramCsvRoundTripsTheServedPoints) {
   store_run("stored", 1);
   start_server(62);
-  const Outcome o = ctl({"diagram", "--run", "stored", "--frame", "0", "--format", "csv"});
+  const Outcome o = ctl({"diagram", "--run", "stored", "--frame", "0", "--dim", "0", "--format", "csv"});
   ASSERT_EQ(o.code, 0) << o.err;
   const json served = call("diagram.get", {{"run", "stored"}, {"frame", 0}, {"dim", 0}});
   ASSERT_GT(served["points"].size(), 1u) << "a diagram with points";
@@ -239,7 +239,8 @@ TEST_F(Fnetctl, InfiniteDistancesPrintAsInfNotAsNoPreviousFrame) {
   const json served =
       call("series.get", {{"run", "stored"}, {"metric", "bottleneck"}, {"dim", 0}, {"essential", "separate"}});
   ASSERT_TRUE(served.contains("infinite")) << "the frames must change their number of never-dying classes";
-  const std::vector<std::string> query{"query", "--run", "stored", "--metric", "bottleneck", "--essential", "separate"};
+  const std::vector<std::string> query{"query",       "--run",    "stored", "--metric", "bottleneck",
+                                       "--essential", "separate", "--dim",  "0"};
   std::vector<std::string> csv_query = query;
   csv_query.insert(csv_query.end(), {"--format", "csv"});
   const auto rows = parse_csv(ctl(csv_query).out);

@@ -67,7 +67,7 @@ on_b "$analyze" publish --csv-dir "$work/csv" --run-id across --domain 82 --wait
 analyzed across 4 || fail "the server did not analyze the 4 published frames"
 echo "ok: 4 frames published in namespace $b analyzed by fnet-server in namespace $a"
 
-# One ensemble fed from two hosts: seeds 1-2 on b, 3-4 on c, at the same time. README's recipe.
+# One ensemble fed from two hosts: seeds 1-2 on b, 3-4 on c, at the same time: deploy/README.md's recipe.
 small=(--particles 100 --box 11.2 --compression-speed 2e-3 --relax-energy 1e-5 --frames 4 --domain 82 --quiet)
 mkdir -p "$work/b" "$work/c"
 on_b "$simd" "${small[@]}" --ensemble mh --seeds 1-2 --jobs 2 --checkpoint "$work/b/{run}.fnetsim" 2> "$work/half-b.err" &

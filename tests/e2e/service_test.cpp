@@ -114,10 +114,10 @@ TEST(Service, SeriesServedEqualsOfflineAnalysisAndFnetctlPrintsIt) {
   }
 
   // fnetctl --format json: one object with equal-length arrays frame, rho, value.
-  Process ctl(
-      FNETCTL,
-      {"--port", std::to_string(server.port), "query", "--metric", "wasserstein2", "--run", "live", "--format", "json"},
-      tmp.path() / "fnetctl.log");
+  Process ctl(FNETCTL,
+              {"--port", std::to_string(server.port), "query", "--metric", "wasserstein2", "--run", "live", "--dim",
+               "0", "--format", "json"},
+              tmp.path() / "fnetctl.log");
   ASSERT_EQ(ctl.wait(30s), 0);
   const json q = json::parse(ctl.read_rest());
   ASSERT_EQ(q["frame"].size(), 6u);

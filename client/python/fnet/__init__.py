@@ -8,7 +8,7 @@ except ImportError as e:  # a python3 other than Debian's (a pyenv one, say) may
     raise ImportError(f"fnet needs numpy: Debian's python3 (/usr/bin/python3) with python3-numpy ({e})") from e
 
 from fnet.arrays import Result
-from fnet.rpc import DEFAULT_HOST, DEFAULT_PORT, Client, RpcError, Subscription
+from fnet.rpc import DEFAULT_DIM, DEFAULT_HOST, DEFAULT_PORT, Client, RpcError, Subscription
 from fnet import store
 
-__all__ = ["Client", "RpcError", "Subscription", "Result", "store", "DEFAULT_HOST", "DEFAULT_PORT"]
+__all__ = ["Client", "RpcError", "Subscription", "Result", "store", "DEFAULT_DIM", "DEFAULT_HOST", "DEFAULT_PORT"]

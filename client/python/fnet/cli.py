@@ -11,7 +11,7 @@ import socket
 import sys
 
 from fnet import figures, provenance, store
-from fnet.rpc import DEFAULT_HOST, DEFAULT_PORT, UNKNOWN_RUN, Client, RpcError
+from fnet.rpc import DEFAULT_DIM, DEFAULT_HOST, DEFAULT_PORT, UNKNOWN_RUN, Client, RpcError
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_UNREACHABLE, EXIT_UNKNOWN, EXIT_SERVER = 0, 1, 2, 3, 4, 5
 EXIT_INTERRUPTED = 130
@@ -74,7 +74,8 @@ def _distance_options(parser, metric_required=True, forces=False):
                         else "bottleneck", help="the distance")
     parser.add_argument("--q", type=_bounded(float, 1, None, "a real number >= 1"),
                         help="the exponent of --metric wasserstein")
-    parser.add_argument("--dim", type=int, choices=(0, 1), default=0, help="0 (components) or 1 (loops)")
+    parser.add_argument("--dim", type=int, choices=(0, 1), default=DEFAULT_DIM,
+                        help=f"0 (components) or 1 (loops) (default {DEFAULT_DIM})")
     if forces:
         parser.add_argument("--force", choices=("normal", "tangential"), action="append",
                             help="force network (repeatable: one curve each; default normal)")
@@ -172,7 +173,8 @@ def build_parser():
     who.add_argument("--run", help="one run's ratio per frame (default: the newest run); binned with --bins")
     who.add_argument("--ensemble", help="an ensemble's ratio of bin means")
     p.add_argument("--ratio", choices=RATIOS, action="append", help="d_B / d_Wq (repeatable; default: both)")
-    p.add_argument("--dim", type=int, choices=(0, 1), default=0, help="0 (components) or 1 (loops)")
+    p.add_argument("--dim", type=int, choices=(0, 1), default=DEFAULT_DIM,
+                   help=f"0 (components) or 1 (loops) (default {DEFAULT_DIM})")
     p.add_argument("--force", choices=("normal", "tangential"), default="normal", help="force network")
     p.add_argument("--essential", choices=("floor", "sentinel", "separate"), default="floor",
                    help="how classes that never die are matched")

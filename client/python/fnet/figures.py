@@ -27,6 +27,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Rectangle
 
+from fnet.rpc import DEFAULT_DIM
+
 METRIC_SYMBOLS = {"bottleneck": "d_B", "wasserstein1": "d_{W1}", "wasserstein2": "d_{W2}"}
 AXIS_LABELS = {"rho": r"$\rho$", "rho_minus_rho_j": r"$\rho - \rho_J$"}
 FORCE_UNIT = r"$f / \langle f \rangle$"  # a force over the mean force of its network
@@ -46,7 +48,7 @@ def _metric_label(r):
         symbol = "d_{W%g}" % r.get("q", 1)
     else:
         symbol = METRIC_SYMBOLS.get(metric, metric)
-    return f"${symbol}$ PD{r.get('dim', 0)}, {r.get('force', 'normal')} forces"
+    return f"${symbol}$ PD{r.get('dim', DEFAULT_DIM)}, {r.get('force', 'normal')} forces"
 
 
 def normalized_network(frame, force="normal"):
@@ -515,7 +517,7 @@ def ratio(curves, labels=None, log=False, rho_j=None, title=None):
         gx, gy = _gapped(x, y, _drawable(x, y, log), _neighbours(c, x))
         q = {"wasserstein1": "W1", "wasserstein2": "W2"}.get(c.get("ratio"), str(c.get("ratio")))
         label = labels[k] if labels else (f"{c.get('ensemble') or c.get('run')} $d_B / d_{{{q}}}$ "
-                                          f"PD{c.get('dim', 0)}, {c.get('force', 'normal')}")
+                                          f"PD{c.get('dim', DEFAULT_DIM)}, {c.get('force', 'normal')}")
         ax.plot(gx, gy, marker=".", color=f"C{k}", label=label, gid="ratio")
         if log:
             _mark_nonpositive(ax, x, y, f"C{k}")

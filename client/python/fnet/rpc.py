@@ -17,6 +17,7 @@ from fnet.arrays import Result, float_array, index_array
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 7707
+DEFAULT_DIM = 1  # the diagram a request means when it names none: proto/api.md's `dim` default
 UNKNOWN_RUN = -32001  # proto/api.md's error code of an unknown run
 
 
@@ -284,20 +285,20 @@ class Client:
         return self.call("server.status")
 
     # -- series, diagrams, distances ------------------------------------------------------------
-    def series(self, metric, run=None, dim=0, force="normal", q=None, essential="floor", ratio=None, from_=None,
-               to=None):
+    def series(self, metric, run=None, dim=DEFAULT_DIM, force="normal", q=None, essential="floor", ratio=None,
+               from_=None, to=None):
         """series.get as numpy arrays: frame, step, time, rho, z, previous (-1: none), value (NaN for
         the first frame, +inf where infinite), infinite (booleans)."""
         return _series(self.call("series.get", _params(metric=metric, run=run, dim=dim, force=force, q=q,
                                                        essential=essential, ratio=ratio, **{"from": from_},
                                                        to=to)))
 
-    def diagram(self, frame, run=None, dim=0, force="normal"):
+    def diagram(self, frame, run=None, dim=DEFAULT_DIM, force="normal"):
         """diagram.get's points as an (n, 2) array of birth, death (death -1: never dies)."""
         r = self.call("diagram.get", _params(frame=frame, run=run, dim=dim, force=force))
         return np.array(r["points"], dtype=np.float64).reshape(-1, 2)
 
-    def distance(self, frame, other_frame, metric, run=None, other_run=None, dim=0, force="normal", q=None,
+    def distance(self, frame, other_frame, metric, run=None, other_run=None, dim=DEFAULT_DIM, force="normal", q=None,
                  essential="floor", delta=None, explain=None):
         """distance.get; `value`, `lower`, `upper` are +inf for an infinite distance."""
         r = Result(self.call("distance.get", _params(frame=frame, other_frame=other_frame, metric=metric, run=run,
@@ -313,13 +314,13 @@ class Client:
         """ensembles.list: a list of ensemble dicts, in name order."""
         return self.call("ensembles.list")["ensembles"]
 
-    def ensemble_series(self, ensemble=None, run=None, metric=None, dim=0, force="normal", q=None, essential="floor",
-                        bin_width=None, bins=None, axis=None, ratio=None):
+    def ensemble_series(self, ensemble=None, run=None, metric=None, dim=DEFAULT_DIM, force="normal", q=None,
+                        essential="floor", bin_width=None, bins=None, axis=None, ratio=None):
         """ensemble.series as numpy arrays per bin: rho_lo, rho_hi, rho, mean (+inf where infinite),
         stderr (NaN where undefined), n_runs, n, z."""
         return _ensemble_series(self.call("ensemble.series", _ensemble_params(**locals())))
 
-    def blocks(self, frame, other_frame, run=None, k=None, metric="bottleneck", dim=0, force="normal", q=None,
+    def blocks(self, frame, other_frame, run=None, k=None, metric="bottleneck", dim=DEFAULT_DIM, force="normal", q=None,
                essential="floor"):
         """blocks.get; adds k x k arrays value, contacts, points, bounds indexed [row, col]."""
         return _blocks(self.call("blocks.get", _params(run=run, frame=frame, other_frame=other_frame, k=k,
@@ -346,7 +347,7 @@ class Client:
         return Subscription(self.host, self.port, self.timeout, "series.subscribe", _params(run=run, since=since),
                             "series.point", "series.unsubscribe", Result)
 
-    def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=0, force="normal", q=None,
+    def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=DEFAULT_DIM, force="normal", q=None,
                            essential="floor", bin_width=None, bins=None, axis=None, ratio=None):
         """ensemble.subscribe: an iterator of ensemble.bins notifications (the bins that changed)
         with numpy arrays; `reply` is the curve when subscribing and `curve` the curve with every

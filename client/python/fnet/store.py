@@ -11,6 +11,7 @@ import json
 import numpy as np
 
 from fnet.arrays import Result
+from fnet.rpc import DEFAULT_DIM
 
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
 FORCES = ("normal", "tangential")
@@ -141,7 +142,7 @@ class Store(_SwmrFile):
         a.setdefault("ensemble", "")
         return a
 
-    def series(self, metric, dim=0, force="normal"):
+    def series(self, metric, dim=DEFAULT_DIM, force="normal"):
         """One of the twelve stored series (floor convention), as Client.series returns it: value
         NaN for the first frame."""
         c = self._cols
@@ -159,7 +160,7 @@ class Store(_SwmrFile):
             raise KeyError(f"run {self.run_id!r} has no committed frame {frame}")
         return int(rows[0])
 
-    def diagram(self, frame, dim=0, force="normal"):
+    def diagram(self, frame, dim=DEFAULT_DIM, force="normal"):
         """A frame's diagram as an (n, 2) array of birth, death (death -1: never dies)."""
         series_key("bottleneck", dim, force)  # checks dim and force
         d = FORCES.index(force) * 2 + dim  # the order of `offsets`: normal PD0, PD1, tangential PD0, PD1

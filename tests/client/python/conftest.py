@@ -1,16 +1,18 @@
-"""What the Python client's tests share: real fnet-server, fnet-analyze and fnet-simd processes
-(their paths come from CMake in FNET_SERVER, FNET_ANALYZE, FNET_SIMD), on the DDS loopback
-configuration and a DDS domain of each test file's own (its module-level DOMAIN, 90-99), each
-stopped when its test file is done. The `server` fixture serves the LAMMPS frames of tests/data on
-that domain as the file's RUN (a file may define its own `server`)."""
+"""What the Python client's tests share: real fnet-server, fnet-analyze, fnet-simd and fnetctl
+processes (their paths come from CMake in FNET_SERVER, FNET_ANALYZE, FNET_SIMD, FNETCTL), on the
+DDS loopback configuration and a DDS domain of each test file's own (its module-level DOMAIN,
+90-99), each stopped when its test file is done. The `server` fixture serves the LAMMPS frames of
+tests/data on that domain as the file's RUN (a file may define its own `server`)."""
 
 import ctypes
 import os
 import re
 import signal
+import struct
 import subprocess
 import sys
 import time
+import zlib
 from pathlib import Path
 
 import pytest
@@ -223,3 +225,25 @@ def expect_png(r, path):
     assert r.returncode == 0, r.stderr
     with open(path, "rb") as f:
         assert f.read(8) == PNG_SIGNATURE
+
+
+def png_text(path):
+    """The text chunks (tEXt, iTXt) of a PNG file as a dict, read chunk by chunk."""
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == PNG_SIGNATURE
+    out, at = {}, 8
+    while at < len(data):
+        (length,), kind = struct.unpack(">I", data[at:at + 4]), data[at + 4:at + 8]
+        body = data[at + 8:at + 8 + length]
+        assert zlib.crc32(kind + body) == struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0]
+        if kind == b"tEXt":
+            key, value = body.split(b"\0", 1)
+            out[key.decode("latin-1")] = value.decode("latin-1")
+        elif kind == b"iTXt":
+            key, rest = body.split(b"\0", 1)
+            compressed, rest = rest[0], rest[2:]
+            _, _, value = rest.split(b"\0", 2)
+            out[key.decode("latin-1")] = (zlib.decompress(value) if compressed else value).decode()
+        at += 12 + length
+    return out

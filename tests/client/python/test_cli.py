@@ -5,12 +5,11 @@ option, before any work; an unreachable server exits 3, an unknown run or frame 
 that is not what it should be 1, each with one line on stderr."""
 
 import struct
-import zlib
 
 import pytest
 
 import fnet
-from conftest import expect_png, plot, simd_run_file
+from conftest import expect_png, plot, png_text, simd_run_file
 from fnet import cli, provenance
 
 DOMAIN = 95
@@ -122,28 +121,6 @@ def test_input_that_is_not_what_it_should_be_exits_1(server, tmp_path):
     r = plot("distances", "--metric", "bottleneck", "--out", tmp_path / "missing" / "x.png", "--port", server.port)
     assert r.returncode == 1 and "--out" in one_line(r)  # output it cannot write
     assert not (tmp_path / "x.png").exists()
-
-
-def png_text(path):
-    """The text chunks (tEXt, iTXt) of a PNG file as a dict, read chunk by chunk."""
-    with open(path, "rb") as f:
-        data = f.read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n"
-    out, at = {}, 8
-    while at < len(data):
-        (length,), kind = struct.unpack(">I", data[at:at + 4]), data[at + 4:at + 8]
-        body = data[at + 8:at + 8 + length]
-        assert zlib.crc32(kind + body) == struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0]
-        if kind == b"tEXt":
-            key, value = body.split(b"\0", 1)
-            out[key.decode("latin-1")] = value.decode("latin-1")
-        elif kind == b"iTXt":
-            key, rest = body.split(b"\0", 1)
-            compressed, rest = rest[0], rest[2:]
-            _, _, value = rest.split(b"\0", 2)
-            out[key.decode("latin-1")] = (zlib.decompress(value) if compressed else value).decode()
-        at += 12 + length
-    return out
 
 
 def png_size(path):

@@ -1,6 +1,7 @@
-"""README's Python example, taken from the document at test time and run as written (with
+"""The Python examples of the documents, taken from them at test time and run as written (with
 PYTHONPATH=client/python and FNET_PORT naming a real fnet-server holding the LAMMPS frames of
-tests/data): it prints what the server serves and writes its figure."""
+tests/data): README's, and the package's own in client/python/README.md. Each prints what the
+server serves and writes its figure."""
 
 import os
 import re
@@ -8,26 +9,30 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
-from conftest import PNG_SIGNATURE, SOURCE_DIR, serve_lammps
+from conftest import PNG_SIGNATURE, SOURCE_DIR
 
 DOMAIN = 96
 RUN = "lammps"
 
+# (document, the heading of the section holding its one python example)
+DOCUMENTS = [("README.md", "## Python"), ("client/python/README.md", "## Using it")]
 
-def readme_example():
-    text = (SOURCE_DIR / "README.md").read_text()
-    section = text[text.index("\n## Python\n"):]
+
+def python_example(document, heading):
+    text = (SOURCE_DIR / document).read_text()
+    section = text[text.index(f"\n{heading}\n"):]
     section = section[:section.index("\n## ", 1)]
     blocks = re.findall(r"```python\n(.*?)\n```", section, re.S)
-    assert len(blocks) == 1, "README's Python section must have exactly one python example"
+    assert len(blocks) == 1, f"{document}'s section '{heading}' must have exactly one python example"
     return blocks[0] + "\n"
 
 
-def test_readme_example_runs_against_a_real_server(processes, tmp_path):
-    example = readme_example()
-    assert len(example.strip().splitlines()) == 5  # what a notebook needs, as the README says
-    server = serve_lammps(processes, DOMAIN, RUN)
+@pytest.mark.parametrize("document,heading", DOCUMENTS)
+def test_the_python_example_runs_against_a_real_server(server, document, heading, tmp_path):
+    example = python_example(document, heading)
+    assert len(example.strip().splitlines()) == 5  # what a notebook needs, as the documents say
     script = tmp_path / "example.py"
     script.write_text(example)
     env = dict(os.environ, PYTHONPATH=str(SOURCE_DIR / "client" / "python"), FNET_PORT=str(server.port))
