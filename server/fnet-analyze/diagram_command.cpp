@@ -12,6 +12,7 @@
 #include "common/topology/frame.hpp"
 #include "common/topology/persistence.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/sources/input_paths.hpp"
 
 namespace po = boost::program_options;
 
@@ -41,8 +42,8 @@ int diagram_command(const std::vector<std::string>& args) {
   if (!parse_options(options, args)) return 0;
 
   const ForceKind kind = named_option("--force", [&] { return parse_force_kind(force); });
-  require_file("--contacts", contacts);
-  if (!particles.empty()) require_file("--particles", particles);
+  sources::require_file("--contacts", contacts);
+  if (!particles.empty()) sources::require_file("--particles", particles);
   // Each stage's input is freed before the next stage runs, so that the next one reuses its memory
   // rather than faulting fresh pages in (a few microseconds each, thousands on a large frame).
   const fnet::FrameDiagrams diagrams = fnet::compute_persistence([&] {

@@ -16,6 +16,7 @@
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/sources/input_paths.hpp"
 
 namespace po = boost::program_options;
 
@@ -68,9 +69,9 @@ int explain_command(const std::vector<std::string>& args) {
       named_option("--essential", [&] { return parse_essential_convention(essential); });
   if (k < 1) throw po::error("--k must be an integer >= 1, got " + std::to_string(k));
   if (format != "table" && format != "json") throw po::error("--format must be table or json, got '" + format + "'");
-  for (const std::string& file : files) require_file("contacts file", file);
-  if (!particles_a.empty()) require_file("--particles-a", particles_a);
-  if (!particles_b.empty()) require_file("--particles-b", particles_b);
+  for (const std::string& file : files) sources::require_file("contacts file", file);
+  if (!particles_a.empty()) sources::require_file("--particles-a", particles_a);
+  if (!particles_b.empty()) sources::require_file("--particles-b", particles_b);
 
   const auto read = [](const std::string& contacts, const std::string& particles) {
     return read_frame_csv(contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));

@@ -7,7 +7,7 @@
 
 #include "common/transport/frame_transport.hpp"
 #include "server/fnet-analyze/commands.hpp"
-#include "server/fnet-analyze/run_source.hpp"
+#include "server/sources/run_source.hpp"
 
 namespace po = boost::program_options;
 
@@ -21,7 +21,7 @@ int publish_command(const std::vector<std::string>& args) {
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
       "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n\n"
       "options");
-  RunSource source;
+  sources::RunSource source;
   double rate = 0;
   int domain = 0;
   double linger = 0, wait_for_reader = 10;

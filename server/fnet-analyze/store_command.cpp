@@ -8,7 +8,7 @@
 #include "common/analysis/run_pipeline.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/fnet-analyze/commands.hpp"
-#include "server/fnet-analyze/run_source.hpp"
+#include "server/sources/run_source.hpp"
 
 namespace po = boost::program_options;
 
@@ -21,7 +21,7 @@ int store_command(const std::vector<std::string>& args) {
       "networks, the twelve distances to the previous accepted frame) and writes D/RUN.h5 in the\n"
       "schema fnet-server uses (proto/store.md), replacing any store of that run there.\n\n"
       "options");
-  RunSource source;
+  sources::RunSource source;
   std::string data_dir;
   options.add_options()("help,h", "show this help");
   source.add_options(options);

@@ -8,7 +8,7 @@
 
 #include "common/run/run_frame.hpp"
 
-namespace fnet::analyze {
+namespace fnet::sources {
 
 struct RunSource {
   std::string run_file, csv_dir, run_id, ensemble;
@@ -18,4 +18,4 @@ struct RunSource {
   std::pair<RunInfo, std::vector<RunFrame>> read() const;
 };
 
-}  // namespace fnet::analyze
+}  // namespace fnet::sources

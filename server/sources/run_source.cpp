@@ -1,12 +1,12 @@
-#include "server/fnet-analyze/run_source.hpp"
+#include "server/sources/run_source.hpp"
 
 #include "common/codec/run_csv.hpp"
 #include "common/run/run_names.hpp"
 #include "common/store/analysis_store.hpp"
 #include "common/store/run_file.hpp"
-#include "server/fnet-analyze/commands.hpp"
+#include "server/sources/input_paths.hpp"
 
-namespace fnet::analyze {
+namespace fnet::sources {
 
 namespace po = boost::program_options;
 
@@ -57,4 +57,4 @@ std::pair<RunInfo, std::vector<RunFrame>> RunSource::read() const {
   return {std::move(info), std::move(frames)};
 }
 
-}  // namespace fnet::analyze
+}  // namespace fnet::sources
