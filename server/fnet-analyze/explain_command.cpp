@@ -12,11 +12,11 @@
 
 #include "common/codec/explain_json.hpp"
 #include "common/codec/explain_table.hpp"
-#include "common/codec/frame_csv.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
 #include "server/fnet-analyze/commands.hpp"
 #include "server/sources/input_paths.hpp"
+#include "server/sources/source_kinds.hpp"
 
 namespace po = boost::program_options;
 
@@ -74,7 +74,10 @@ int explain_command(const std::vector<std::string>& args) {
   if (!particles_b.empty()) sources::require_file("--particles-b", particles_b);
 
   const auto read = [](const std::string& contacts, const std::string& particles) {
-    return read_frame_csv(contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
+    return sources::next_frame(
+               *sources::open_frame_files(
+                   contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles)))
+        .frame;
   };
   const Frame a = read(files[0], particles_a), b = read(files[1], particles_b);
   const auto start = std::chrono::steady_clock::now();
