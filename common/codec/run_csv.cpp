@@ -8,7 +8,7 @@
 
 namespace fnet {
 
-std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::string& run_id) {
+std::vector<FrameHeader> read_csv_index(const std::filesystem::path& dir, const std::string& run_id) {
   const std::filesystem::path index = dir / "index.csv";
   std::ifstream in(index);
   if (!in) throw CsvError(index.string() + ": cannot open file");
@@ -33,7 +33,7 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
   // fnet writes z; the LAMMPS reference data says Z.
   const int c_frame = column({"frame"}, true), c_step = column({"step"}, false), c_time = column({"time"}, false),
             c_rho = column({"rho"}, true), c_z = column({"z", "Z"}, true);
-  std::vector<RunFrame> out;
+  std::vector<FrameHeader> out;
   std::size_t line_no = 1;
   while (std::getline(in, line)) {
     ++line_no;
@@ -43,24 +43,36 @@ std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::
     if (cells.size() != header.size())
       throw CsvError(index.string() + ":" + std::to_string(line_no) + ": expected " + std::to_string(header.size()) +
                      " fields");
-    RunFrame f;
+    FrameHeader h;
     try {
-      f.header.run_id = run_id;
-      f.header.index = static_cast<std::uint32_t>(std::stoul(cells[c_frame]));
+      h.run_id = run_id;
+      h.index = static_cast<std::uint32_t>(std::stoul(cells[c_frame]));
       // An experiment has no simulation step: its frames count in their place.
-      f.header.step = c_step >= 0 ? std::stoull(cells[c_step]) : f.header.index;
-      f.header.time = c_time >= 0 ? std::stod(cells[c_time]) : 0.0;
-      f.header.rho = std::stod(cells[c_rho]);
-      f.header.z = std::stod(cells[c_z]);
+      h.step = c_step >= 0 ? std::stoull(cells[c_step]) : h.index;
+      h.time = c_time >= 0 ? std::stod(cells[c_time]) : 0.0;
+      h.rho = std::stod(cells[c_rho]);
+      h.z = std::stod(cells[c_z]);
     } catch (const std::exception&) {
       throw CsvError(index.string() + ":" + std::to_string(line_no) + ": not a number in '" + line + "'");
     }
-    char stem[32];
-    std::snprintf(stem, sizeof stem, "frame_%04u", f.header.index);
-    f.frame = read_frame_csv(dir / (std::string(stem) + "_contacts.csv"), dir / (std::string(stem) + "_particles.csv"));
-    f.frame.label = frame_label(run_id, f.header.index);
-    out.push_back(std::move(f));
+    out.push_back(std::move(h));
   }
+  return out;
+}
+
+RunFrame read_csv_frame(const std::filesystem::path& dir, const FrameHeader& header) {
+  char stem[32];
+  std::snprintf(stem, sizeof stem, "frame_%04u", header.index);
+  RunFrame f;
+  f.header = header;
+  f.frame = read_frame_csv(dir / (std::string(stem) + "_contacts.csv"), dir / (std::string(stem) + "_particles.csv"));
+  f.frame.label = frame_label(header.run_id, header.index);
+  return f;
+}
+
+std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::string& run_id) {
+  std::vector<RunFrame> out;
+  for (const FrameHeader& header : read_csv_index(dir, run_id)) out.push_back(read_csv_frame(dir, header));
   return out;
 }
 

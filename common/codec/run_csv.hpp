@@ -13,8 +13,15 @@
 
 namespace fnet {
 
-// Reads every frame listed in index.csv. Frames are not validated here; a file that cannot be
-// parsed throws CsvError naming it.
+// The frames index.csv lists, in its order, each header labelled with run_id. A file that cannot
+// be parsed throws CsvError naming it, and the line.
+std::vector<FrameHeader> read_csv_index(const std::filesystem::path& dir, const std::string& run_id);
+
+// The frame `header` lists: its contacts and particles files read, labelled with its run and index.
+// Not validated here; a file that cannot be read throws CsvError naming it.
+RunFrame read_csv_frame(const std::filesystem::path& dir, const FrameHeader& header);
+
+// Every frame listed in index.csv: read_csv_index, then read_csv_frame for each.
 std::vector<RunFrame> read_csv_run(const std::filesystem::path& dir, const std::string& run_id);
 
 }  // namespace fnet

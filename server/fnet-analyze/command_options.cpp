@@ -34,19 +34,6 @@ MetricChoice metric_option(const std::string& name, std::optional<double> q) {
   return named_option(known ? "--q" : "--metric", [&] { return parse_metric(name, q); });
 }
 
-void require_file(const std::string& what, const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such file");
-  if (fs::is_directory(path))
-    throw boost::program_options::error(what + " " + path.string() + ": is a directory, not a file");
-}
-
-void require_directory(const std::string& what, const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(path)) throw boost::program_options::error(what + " " + path.string() + ": no such directory");
-  if (!fs::is_directory(path)) throw boost::program_options::error(what + " " + path.string() + ": not a directory");
-}
-
 int run_command(const std::string& name, const Command& command, const std::vector<std::string>& args) {
   try {
     return command(args);

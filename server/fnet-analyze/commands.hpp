@@ -1,7 +1,6 @@
 // The subcommands of fnet-analyze; each parses its own options and returns the exit code.
 #pragma once
 
-#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -33,10 +32,6 @@ auto named_option(const std::string& flag, Parse parse) {
 
 // --metric and --q by the shared vocabulary; the usage error names the flag at fault.
 MetricChoice metric_option(const std::string& name, std::optional<double> q);
-
-// Usage errors, before any work: "<what> <path>: no such file" (or directory).
-void require_file(const std::string& what, const std::filesystem::path& path);
-void require_directory(const std::string& what, const std::filesystem::path& path);
 
 using Command = std::function<int(const std::vector<std::string>&)>;
 

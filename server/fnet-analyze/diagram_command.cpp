@@ -7,19 +7,21 @@
 #include <boost/program_options.hpp>
 
 #include "common/codec/diagram_json.hpp"
-#include "common/codec/frame_csv.hpp"
 #include "common/topology/force_network.hpp"
 #include "common/topology/frame.hpp"
 #include "common/topology/persistence.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/sources/source_kinds.hpp"
 
 namespace po = boost::program_options;
 
 namespace fnet::analyze {
 
 int diagram_command(const std::vector<std::string>& args) {
+  const std::vector<sources::SourceKind> kinds = sources::frame_kinds();
   po::options_description options(
-      "usage: fnet-analyze diagram --contacts C.csv [--particles P.csv] [--force normal|tangential]\n"
+      "usage: fnet-analyze diagram " + sources::source_usage(kinds) +
+      " [--force normal|tangential]\n"
       "\n"
       "Prints the frame's diagram document {\"pd0\": [[birth, death], ...], \"pd1\": [...], \"vertices\": N,\n"
       "\"edges\": E, \"triangles\": T}, which 'fnet-analyze distance' reads.\n"
@@ -29,25 +31,20 @@ int diagram_command(const std::vector<std::string>& args) {
       "death, both descending.\n"
       "\n"
       "options");
-  std::string contacts, particles, force = "normal";
-  options.add_options()("help,h", "show this help")(
-      "contacts", po::value(&contacts)->required(),
-      "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential "
-      "force (magnitudes are used)")(
-      "particles", po::value(&particles),
-      "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: "
-      "largest contact index + 1)")("force", po::value(&force)->default_value("normal"),
-                                    "which force network: normal or tangential");
-  if (!parse_options(options, args)) return 0;
+  std::string force = "normal";
+  options.add_options()("help,h", "show this help");
+  sources::add_source_options(kinds, options);
+  options.add_options()("force", po::value(&force)->default_value("normal"),
+                        "which force network: normal or tangential");
+  const auto vm = parse_options(options, args);
+  if (!vm) return 0;
 
   const ForceKind kind = named_option("--force", [&] { return parse_force_kind(force); });
-  require_file("--contacts", contacts);
-  if (!particles.empty()) require_file("--particles", particles);
+  const sources::ChosenSource input = sources::choose_source(kinds, *vm);
   // Each stage's input is freed before the next stage runs, so that the next one reuses its memory
   // rather than faulting fresh pages in (a few microseconds each, thousands on a large frame).
   const fnet::FrameDiagrams diagrams = fnet::compute_persistence([&] {
-    fnet::Frame frame = fnet::read_frame_csv(
-        contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
+    const fnet::Frame frame = sources::next_frame(*input.open()).frame;
     fnet::validate(frame);
     return fnet::build_network(frame, kind);
   }());

@@ -15,6 +15,7 @@
 #include "common/codec/file_text.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/sources/input_paths.hpp"
 
 namespace po = boost::program_options;
 
@@ -77,7 +78,7 @@ int distance_command(const std::vector<std::string>& args) {
   const EssentialConvention convention =
       named_option("--essential", [&] { return parse_essential_convention(essential); });
   if (!std::isfinite(delta) || delta < 0) throw po::error("--delta must be a finite number >= 0");
-  for (const std::string& file : files) require_file("diagram file", file);
+  for (const std::string& file : files) sources::require_file("diagram file", file);
 
   const Diagram a = read_diagram(files[0], d), b = read_diagram(files[1], d);
   const auto start = std::chrono::steady_clock::now();

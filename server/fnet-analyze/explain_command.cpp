@@ -12,10 +12,11 @@
 
 #include "common/codec/explain_json.hpp"
 #include "common/codec/explain_table.hpp"
-#include "common/codec/frame_csv.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/sources/input_paths.hpp"
+#include "server/sources/source_kinds.hpp"
 
 namespace po = boost::program_options;
 
@@ -69,12 +70,15 @@ int explain_command(const std::vector<std::string>& args) {
       named_option("--essential", [&] { return parse_essential_convention(essential); });
   if (k < 1) throw po::error("--k must be an integer >= 1, got " + std::to_string(k));
   if (format != "table" && format != "json") throw po::error("--format must be table or json, got '" + format + "'");
-  for (const std::string& file : files) require_file("contacts file", file);
-  if (!particles_a.empty()) require_file("--particles-a", particles_a);
-  if (!particles_b.empty()) require_file("--particles-b", particles_b);
+  for (const std::string& file : files) sources::require_file("contacts file", file);
+  if (!particles_a.empty()) sources::require_file("--particles-a", particles_a);
+  if (!particles_b.empty()) sources::require_file("--particles-b", particles_b);
 
   const auto read = [](const std::string& contacts, const std::string& particles) {
-    return read_frame_csv(contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles));
+    return sources::next_frame(
+               *sources::open_frame_files(
+                   contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles)))
+        .frame;
   };
   const Frame a = read(files[0], particles_a), b = read(files[1], particles_b);
   const auto start = std::chrono::steady_clock::now();

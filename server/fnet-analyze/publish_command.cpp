@@ -7,34 +7,38 @@
 
 #include "common/transport/frame_transport.hpp"
 #include "server/fnet-analyze/commands.hpp"
-#include "server/fnet-analyze/run_source.hpp"
+#include "server/sources/run_source.hpp"
+#include "server/sources/source_kinds.hpp"
 
 namespace po = boost::program_options;
 
 namespace fnet::analyze {
 
 int publish_command(const std::vector<std::string>& args) {
+  const std::vector<sources::SourceKind> kinds = sources::run_kinds();
   po::options_description options(
-      "usage: fnet-analyze publish (--run-file F | --csv-dir DIR --run-id R) [--ensemble E] [--rate FPS]\n"
+      "usage: fnet-analyze publish " + sources::run_usage(kinds) +
+      " [--ensemble E] [--rate FPS]\n"
       "       [--domain D]\n\n"
       "Publishes the run's announcement and every frame on the DDS topics fnet_RunInfo and\n"
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
       "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n\n"
       "options");
-  RunSource source;
   double rate = 0;
   int domain = 0;
   double linger = 0, wait_for_reader = 10;
   options.add_options()("help,h", "show this help");
-  source.add_options(options);
+  sources::add_run_options(kinds, options);
   options.add_options()("rate", po::value(&rate)->default_value(0), "frames per second (0: as fast as possible)")(
       "domain", po::value(&domain)->default_value(0), "DDS domain id")(
       "wait-for-reader", po::value(&wait_for_reader)->default_value(10),
       "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")(
       "linger", po::value(&linger)->default_value(0),
       "seconds to keep serving late subscribers from the durability history after the last frame");
-  if (!parse_options(options, args)) return 0;
-  auto [info, frames] = source.read();
+  const auto vm = parse_options(options, args);
+  if (!vm) return 0;
+  const std::unique_ptr<sources::FrameSource> source = sources::open_run(kinds, *vm);
+  const RunInfo& info = source->announcement();
   dds::FramePublisher publisher(static_cast<dds_domainid_t>(domain));
   // Discovery takes a moment; frames written before it are still served to late readers only
   // while this process lives (see --linger).
@@ -43,12 +47,15 @@ int publish_command(const std::vector<std::string>& args) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   publisher.publish(info);
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    if (rate > 0) std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(k) / rate));
-    publisher.publish(frames[k]);
+  std::size_t published = 0;
+  while (const std::optional<RunFrame> frame = source->next()) {
+    if (rate > 0)
+      std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(published) / rate));
+    publisher.publish(*frame);
+    ++published;
   }
   publisher.wait_for_acks(DDS_SECS(30));
-  std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << frames.size() << " frames published, "
+  std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << published << " frames published, "
             << publisher.matched_frame_readers() << " reader(s) matched\n";
   if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
   return 0;

@@ -1,0 +1,56 @@
+// One frame's CSV files: the contacts, and optionally the particle table.
+#include <utility>
+
+#include "common/codec/frame_csv.hpp"
+#include "server/sources/source_kinds.hpp"
+
+namespace fnet::sources {
+
+namespace {
+
+class FrameFiles final : public FrameSource {
+ public:
+  FrameFiles(const std::filesystem::path& contacts, const std::optional<std::filesystem::path>& particles) {
+    frame_.emplace();
+    frame_->frame = read_frame_csv(contacts, particles);
+    info_.frames = 1;
+    info_.particles = static_cast<std::uint32_t>(frame_->frame.particle_count);
+    info_.config_json = "{}";
+  }
+  const RunInfo& announcement() const override { return info_; }
+  std::optional<RunFrame> next() override { return std::exchange(frame_, std::nullopt); }
+
+ private:
+  RunInfo info_;
+  std::optional<RunFrame> frame_;  // until taken
+};
+
+std::unique_ptr<FrameSource> open(const SourceArguments& given) {
+  const auto particles = given.find("particles");
+  return open_frame_files(given.at("contacts"), particles == given.end()
+                                                    ? std::nullopt
+                                                    : std::optional<std::filesystem::path>(particles->second));
+}
+
+}  // namespace
+
+std::unique_ptr<FrameSource> open_frame_files(const std::filesystem::path& contacts,
+                                              const std::optional<std::filesystem::path>& particles) {
+  return std::make_unique<FrameFiles>(contacts, particles);
+}
+
+SourceKind frame_files_kind() {
+  return {"frame's CSV files",
+          {{"contacts", "C.csv",
+            "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential force "
+            "(magnitudes are used)",
+            SourceFlag::Path::file},
+           {"particles", "P.csv",
+            "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: largest "
+            "contact index + 1)",
+            SourceFlag::Path::file, false}},
+          false,
+          open};
+}
+
+}  // namespace fnet::sources
