@@ -32,6 +32,10 @@ int store_command(const std::vector<std::string>& args) {
   if (!vm) return 0;
   const std::unique_ptr<sources::FrameSource> source = sources::open_run(kinds, *vm);
   const RunInfo& info = source->announcement();
+  // Every frame is read before the store is touched: input that cannot be read leaves any store
+  // of the run as it was.
+  std::vector<RunFrame> frames;
+  while (std::optional<RunFrame> frame = source->next()) frames.push_back(std::move(*frame));
   std::filesystem::create_directories(data_dir);
   const std::filesystem::path path = store_path(data_dir, info.run_id);
   std::filesystem::remove(path);
@@ -54,7 +58,7 @@ int store_command(const std::vector<std::string>& args) {
     }
   };
   const auto now = PipelineClock::now();
-  while (std::optional<RunFrame> frame = source->next()) write(pipeline.push(std::move(*frame), now));
+  for (RunFrame& frame : frames) write(pipeline.push(std::move(frame), now));
   write(pipeline.finish());
   const std::size_t accepted = pipeline.counts().accepted, rejected = pipeline.counts().rejected;
   std::cout << nlohmann::json{{"run", info.run_id},

@@ -1,6 +1,8 @@
 // fnet-analyze's exit codes and messages as users meet them: usage errors (a bad flag, value or
 // path) exit 2 naming what was wrong, before any work; input that cannot be analyzed exits 1.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,26 @@ TEST_F(AnalyzeCli, StoreFromAFileThatIsNotHdf5FailsWithOne) {
   const auto text = write("notes.h5", "not HDF5\n");
   EXPECT_THAT(fails_with(1, {"store", "--run-file", text.string(), "--data-dir", (dir() / "d").string()}),
               HasSubstr(text.string()));
+}
+
+TEST_F(AnalyzeCli, StoreFromInputCutShortLeavesTheRunsStoreAsItWas) {
+  namespace fs = std::filesystem;
+  fs::copy(fs::path(FNET_TEST_DATA) / "run-file-v1" / "csv", dir() / "csv");
+  const std::vector<std::string> args{"store", "--csv-dir",  (dir() / "csv").string(), "--run-id",
+                                      "cut",   "--data-dir", (dir() / "d").string()};
+  ASSERT_EQ(analyze(args).exit_code, 0);
+  const fs::path store = dir() / "d" / "cut.h5";
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string before = bytes(store);
+  const fs::path last = dir() / "csv" / "frame_0002_contacts.csv";
+  const std::string text = bytes(last);
+  const std::size_t row = text.find('\n', text.size() / 2) + 1;  // a row cut after its first column
+  std::ofstream(last, std::ios::trunc) << text.substr(0, text.find(',', row) + 1);
+  EXPECT_THAT(fails_with(1, args), HasSubstr(last.string()));
+  EXPECT_EQ(bytes(store), before) << "the store was touched before the input was read";
 }
 
 TEST_F(AnalyzeCli, DiagramWithAnUnknownForceIsAUsageError) {
