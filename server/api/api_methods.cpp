@@ -184,6 +184,23 @@ json server_status(const ApiContext& ctx) {
 
 // ---- subscriptions: each connection's, released when it closes --------------------------------
 
+// A series subscription as its client receives it, whatever the transport: each point a
+// series.point notification, built off the registry's lock.
+class PeerSeries final : public Subscriber {
+ public:
+  explicit PeerSeries(std::weak_ptr<rpc::Peer> peer) : peer_(std::move(peer)) {}
+  bool deliver(std::uint64_t subscription, const SeriesPoint& p) override {
+    const auto peer = peer_.lock();
+    if (!peer) return false;
+    json params = point_json(p);
+    params["subscription"] = subscription;
+    return peer->send(rpc::notification("series.point", std::move(params)));
+  }
+
+ private:
+  const std::weak_ptr<rpc::Peer> peer_;
+};
+
 class Subscriptions {
  public:
   explicit Subscriptions(ApiContext& ctx)
@@ -197,15 +214,7 @@ class Subscriptions {
     Registry& registry = ctx_.registry;
     if (!run.empty() && !registry.has_run(run)) unknown_run(registry, run);
     held_->check_room(*session);
-    std::weak_ptr<rpc::Peer> weak = session;
-    const std::uint64_t id = registry.subscribe(run, since, [weak](std::uint64_t subscription, const SeriesPoint& p) {
-      const auto s = weak.lock();
-      if (!s) return false;
-      json params_out = point_json(p);
-      params_out["subscription"] = subscription;
-      return s->send(rpc::notification("series.point", std::move(params_out)));
-    });
-    if (id == 0) throw Error(rpc::kInternalError, "connection closed while sending the backlog");
+    const std::uint64_t id = registry.subscribe(run, since, std::make_shared<PeerSeries>(session));
     held_->add(session, id);
     return {{"subscription", id}, {"run", run.empty() ? json(nullptr) : json(run)}};
   }

@@ -269,6 +269,21 @@ bool same_bin(const CurveBin& a, const CurveBin& b) {
          (!a.standard_error || same_value(*a.standard_error, *b.standard_error));
 }
 
+class EnsembleSubscriptions;
+
+// What an ensemble subscription asks of the registry: to be marked for recomputation when a
+// member run commits a frame (the curve is recomputed on the subscriptions' own thread).
+class MarkOnCommit final : public Subscriber {
+ public:
+  MarkOnCommit(std::weak_ptr<EnsembleSubscriptions> owner, std::string ensemble)
+      : owner_(std::move(owner)), ensemble_(std::move(ensemble)) {}
+  bool deliver(std::uint64_t subscription, const SeriesPoint& p) override;
+
+ private:
+  const std::weak_ptr<EnsembleSubscriptions> owner_;
+  const std::string ensemble_;  // empty: a run's curve, marked by each of its points
+};
+
 // Recomputes a subscription's curve after each commit of a member run, off the registry's lock
 // (commits only mark the subscription), and sends the bins that changed.
 class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscriptions> {
@@ -313,14 +328,8 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     std::unique_lock sub_lock(sub->mutex);
     std::weak_ptr<EnsembleSubscriptions> weak_self = weak_from_this();
     const std::string ensemble = sub->request.ensemble;
-    const std::uint64_t id =
-        registry.subscribe(sub->request.run, std::numeric_limits<std::uint32_t>::max(),
-                           [weak_self, ensemble](std::uint64_t subscription, const SeriesPoint& p) {
-                             const auto self = weak_self.lock();
-                             if (!self) return false;
-                             if (ensemble.empty() || p.ensemble == ensemble) self->mark(subscription);
-                             return true;
-                           });
+    const std::uint64_t id = registry.subscribe(sub->request.run, std::numeric_limits<std::uint32_t>::max(),
+                                                std::make_shared<MarkOnCommit>(weak_self, ensemble));
     sub->id = id;
     {
       std::lock_guard lock(mutex_);
@@ -348,6 +357,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
   }
 
  private:
+  friend class MarkOnCommit;  // marks a subscription when its runs commit
   struct Subscription {
     std::mutex mutex;  // held while its curve is computed and sent
     std::uint64_t id = 0;
@@ -440,6 +450,13 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
   bool stopping_ = false;
   std::thread worker_;
 };
+
+bool MarkOnCommit::deliver(std::uint64_t subscription, const SeriesPoint& p) {
+  const auto owner = owner_.lock();
+  if (!owner) return false;
+  if (ensemble_.empty() || p.ensemble == ensemble_) owner->mark(subscription);
+  return true;
+}
 
 }  // namespace
 

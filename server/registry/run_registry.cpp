@@ -1,6 +1,7 @@
 #include "server/registry/run_registry.hpp"
 
 #include <iostream>
+#include <type_traits>
 #include <variant>
 
 #include <boost/asio/post.hpp>
@@ -13,6 +14,68 @@ namespace fnet::server {
 Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits)
     : data_dir_(std::move(data_dir)), pool_(pool), limits_(limits) {
   std::filesystem::create_directories(data_dir_);
+}
+
+template <class F>
+auto Registry::locked_then_deliver(F&& f) {
+  std::vector<std::shared_ptr<Outbox>> ready;
+  const auto take = [&] { ready.swap(ready_); };
+  if constexpr (std::is_void_v<decltype(f())>) {
+    {
+      std::lock_guard lock(mutex_);
+      f();
+      take();
+    }
+    for (const auto& outbox : ready) deliver(*outbox);
+  } else {
+    auto result = [&] {
+      std::lock_guard lock(mutex_);
+      auto r = f();
+      take();
+      return r;
+    }();
+    for (const auto& outbox : ready) deliver(*outbox);
+    return result;
+  }
+}
+
+bool Registry::queue_locked(Subscription& s, const SeriesPoint& point) {
+  Outbox& o = *s.outbox;
+  std::lock_guard lock(o.mutex);
+  if (o.ended) return false;
+  if (o.pending.size() >= limits_.max_pending_points) {
+    std::cerr << "fnet-server: subscription " << o.id << " ended: " << o.pending.size()
+              << " points wait for its subscriber, which does not keep up\n";
+    o.ended = true;
+    o.pending.clear();
+    return false;
+  }
+  o.pending.push_back(point);
+  if (o.pending.size() == 1) ready_.push_back(s.outbox);
+  return true;
+}
+
+// One thread at a time delivers an outbox, in order; a point queued while it delivers is taken by
+// the same loop, since the queue's emptiness and `delivering` change under the outbox's mutex.
+void Registry::deliver(Outbox& o) {
+  std::unique_lock lock(o.mutex);
+  if (o.delivering) return;
+  o.delivering = true;
+  bool gone = false;
+  while (!o.pending.empty() && !o.ended) {
+    const SeriesPoint point = std::move(o.pending.front());
+    o.pending.pop_front();
+    lock.unlock();
+    gone = !o.subscriber->deliver(o.id, point);
+    lock.lock();
+    if (gone) {
+      o.ended = true;
+      o.pending.clear();
+    }
+  }
+  o.delivering = false;
+  lock.unlock();
+  if (gone) unsubscribe(o.id);
 }
 
 std::vector<std::string> Registry::load() {
@@ -116,37 +179,39 @@ void Registry::on_malformed(const std::string& reason) {
 }
 
 void Registry::on_frame(RunFrame frame) {
-  std::unique_lock lock(mutex_);
-  ++counters_.received;
-  if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
-    ++counters_.malformed;
-    note_rejection_locked(frame.frame.label + ": rejected: " + problem);
-    return;
-  }
-  Run& run = run_locked(frame.header.run_id);
-  run.last_activity = store_time_now();
-  RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
-  switch (admission.arrival) {
-    case RunPipeline::Arrival::duplicate:
-      ++counters_.duplicates;
+  locked_then_deliver([&] {
+    ++counters_.received;
+    if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
+      ++counters_.malformed;
+      note_rejection_locked(frame.frame.label + ": rejected: " + problem);
       return;
-    case RunPipeline::Arrival::late:
-      ++counters_.late;
-      break;
-    case RunPipeline::Arrival::queued:
-      post_locked(run, std::move(*admission.job));
-      break;
-  }
-  publish_locked(run);
+    }
+    Run& run = run_locked(frame.header.run_id);
+    run.last_activity = store_time_now();
+    RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
+    switch (admission.arrival) {
+      case RunPipeline::Arrival::duplicate:
+        ++counters_.duplicates;
+        return;
+      case RunPipeline::Arrival::late:
+        ++counters_.late;
+        break;
+      case RunPipeline::Arrival::queued:
+        post_locked(run, std::move(*admission.job));
+        break;
+    }
+    publish_locked(run);
+  });
 }
 
 void Registry::post_locked(const Run& run, DiagramJob job) {
   boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
     DiagramOutcome outcome = job.run();
-    std::lock_guard lock(mutex_);
-    Run& r = runs_.at(id);
-    post_locked(r, r.pipeline.analyzed(std::move(outcome)));
-    publish_locked(r);
+    locked_then_deliver([&] {
+      Run& r = runs_.at(id);
+      post_locked(r, r.pipeline.analyzed(std::move(outcome)));
+      publish_locked(r);
+    });
   });
 }
 
@@ -154,10 +219,11 @@ void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
   for (DistanceJob& job : jobs)
     boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
       const DistanceOutcome outcome = job.run();
-      std::lock_guard lock(mutex_);
-      Run& r = runs_.at(id);
-      r.pipeline.measured(outcome);
-      publish_locked(r);
+      locked_then_deliver([&] {
+        Run& r = runs_.at(id);
+        r.pipeline.measured(outcome);
+        publish_locked(r);
+      });
     });
 }
 
@@ -194,8 +260,7 @@ void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> fram
   const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances, run.info.ensemble};
   run.committed[frame->header.index] = std::move(frame);
   for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
-    const bool keep =
-        (!s->second.run_id.empty() && s->second.run_id != run.run_id) || s->second.listener(s->first, point);
+    const bool keep = (!s->second.run_id.empty() && s->second.run_id != run.run_id) || queue_locked(s->second, point);
     s = keep ? std::next(s) : subscriptions_.erase(s);
   }
 }
@@ -213,12 +278,13 @@ void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
 }
 
 void Registry::check_gaps() {
-  std::lock_guard lock(mutex_);
-  const auto now = Clock::now();
-  for (auto& [id, run] : runs_) {
-    post_locked(run, run.pipeline.skip_gaps(now));
-    publish_locked(run);
-  }
+  locked_then_deliver([&] {
+    const auto now = Clock::now();
+    for (auto& [id, run] : runs_) {
+      post_locked(run, run.pipeline.skip_gaps(now));
+      publish_locked(run);
+    }
+  });
 }
 
 std::size_t Registry::in_flight() const {
@@ -346,23 +412,41 @@ std::vector<Registry::MemberRun> Registry::ensemble_members(const std::string& e
   return out;
 }
 
-std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener) {
-  std::lock_guard lock(mutex_);
-  const std::uint64_t subscription = next_subscription_++;
-  for (const auto& [id, run] : runs_) {
-    if (!run_id.empty() && id != run_id) continue;
-    for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end(); ++it)
-      if (!listener(subscription,
-                    {id, it->second->header, it->second->previous, it->second->distances, run.info.ensemble}))
-        return 0;
-  }
-  subscriptions_[subscription] = {run_id, std::move(listener)};
-  return subscription;
+std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::uint32_t> since,
+                                  std::shared_ptr<Subscriber> subscriber) {
+  return locked_then_deliver([&] {
+    const std::uint64_t id = next_subscription_++;
+    Subscription sub{run_id, std::make_shared<Outbox>()};
+    sub.outbox->id = id;
+    sub.outbox->subscriber = std::move(subscriber);
+    for (const auto& [rid, run] : runs_) {
+      if (!run_id.empty() && rid != run_id) continue;
+      for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end();
+           ++it) {
+        std::lock_guard lock(sub.outbox->mutex);  // the backlog, bounded only by the run's length
+        sub.outbox->pending.push_back(
+            {rid, it->second->header, it->second->previous, it->second->distances, run.info.ensemble});
+      }
+    }
+    if (!sub.outbox->pending.empty()) ready_.push_back(sub.outbox);
+    subscriptions_[id] = std::move(sub);
+    return id;
+  });
 }
 
 void Registry::unsubscribe(std::uint64_t id) {
-  std::lock_guard lock(mutex_);
-  subscriptions_.erase(id);
+  std::shared_ptr<Outbox> outbox;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = subscriptions_.find(id);
+    if (it == subscriptions_.end()) return;
+    outbox = std::move(it->second.outbox);
+    subscriptions_.erase(it);
+  }
+  // Points not yet delivered are dropped; one being delivered at this moment may still arrive.
+  std::lock_guard lock(outbox->mutex);
+  outbox->ended = true;
+  outbox->pending.clear();
 }
 
 std::size_t Registry::subscriptions() const {

@@ -24,22 +24,11 @@
 #include "common/analysis/run_pipeline.hpp"
 #include "common/run/run_frame.hpp"
 #include "common/store/analysis_store.hpp"
+#include "server/registry/subscriber.hpp"
 
 namespace fnet::server {
 
 using Clock = PipelineClock;
-
-struct SeriesPoint {
-  std::string run_id;
-  FrameHeader header;
-  std::optional<std::uint32_t> previous;
-  StepDistances distances;
-  std::string ensemble;  // the run's, as announced (empty: none, or not announced yet)
-};
-
-// Called with the subscription's id for each committed frame, under the registry's lock, in
-// commit order; must not block (it queues a message). Returning false removes the listener.
-using Listener = std::function<bool(std::uint64_t subscription, const SeriesPoint&)>;
 
 struct RunSummary {
   std::string run_id;
@@ -68,6 +57,7 @@ struct Counters {
 struct RegistryLimits {
   std::chrono::milliseconds gap_timeout{30000};  // a missing frame is skipped after this
   std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
+  std::size_t max_pending_points = 100000;       // a subscription's outbox beyond this ends it
 };
 
 class Registry {
@@ -120,10 +110,11 @@ class Registry {
   // members are seen at one instant. Empty when no run names it.
   std::vector<MemberRun> ensemble_members(const std::string& ensemble) const;
 
-  // Registers a listener; `backlog` receives, under the same lock, every committed point of
-  // `run_id` (or of every run when empty) with frame index > since, so nothing is missed or
-  // repeated between the backlog and the live points.
-  std::uint64_t subscribe(const std::string& run_id, std::optional<std::uint32_t> since, Listener listener);
+  // Registers a subscriber (subscriber.hpp). It first receives every committed point of `run_id`
+  // (of every run when empty) with frame index > since, then the points committed after, through
+  // one outbox: nothing is missed or repeated between the two.
+  std::uint64_t subscribe(const std::string& run_id, std::optional<std::uint32_t> since,
+                          std::shared_ptr<Subscriber> subscriber);
   void unsubscribe(std::uint64_t id);
   std::size_t subscriptions() const;
 
@@ -145,12 +136,28 @@ class Registry {
     std::unique_ptr<StoreWriter> store;
     std::string store_problem;  // why there is no store, or why it stopped taking frames
   };
+  // A subscription's queue of points not yet delivered; its mutex orders pushes against the
+  // delivery, which one thread at a time performs.
+  struct Outbox {
+    std::uint64_t id = 0;
+    std::shared_ptr<Subscriber> subscriber;
+    std::mutex mutex;
+    std::deque<SeriesPoint> pending;
+    bool delivering = false, ended = false;
+  };
   struct Subscription {
     std::string run_id;
-    Listener listener;
+    std::shared_ptr<Outbox> outbox;
   };
 
   Run& run_locked(const std::string& run_id);
+  // Queues a point in a subscription's outbox, marked for delivery; ends a subscription whose
+  // outbox is full. Returns whether the subscription goes on.
+  bool queue_locked(Subscription& s, const SeriesPoint& point);
+  // Runs `f` under the lock, then delivers what it queued, off the lock.
+  template <class F>
+  auto locked_then_deliver(F&& f);
+  void deliver(Outbox& outbox);
   // Runs jobs on the pool; each hands its outcome back to the run's pipeline under the lock.
   void post_locked(const Run& run, DiagramJob job);
   void post_locked(const Run& run, std::vector<DistanceJob> jobs);
@@ -172,6 +179,7 @@ class Registry {
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
   std::map<std::uint64_t, Subscription> subscriptions_;
+  std::vector<std::shared_ptr<Outbox>> ready_;  // outboxes with points queued since the last delivery
   std::uint64_t next_subscription_ = 1;
   Counters counters_;
   std::deque<std::string> recent_rejections_;
