@@ -7,8 +7,9 @@
 //    of each box on the way to the root) as heap entries keyed by a lower bound on the reduced cost
 //    of any arc into the box (pair_oracle.hpp). Boxes are opened best first, boxes whose points are
 //    all settled are skipped, so the search is exact on the complete graph.
-// Invariant kept: every residual arc the search may scan has reduced cost >= 0 (the potentials of
-// the settled nodes are lowered by their distance's shortfall to the sink's, the rest kept).
+// After a search each settled node's potential is lowered by its distance's shortfall to the
+// sink's and the rest are kept, so the arcs the searches scan keep reduced costs >= 0 (rounding
+// below 0 is clamped in the keys).
 #pragma once
 
 #include <cstdint>
