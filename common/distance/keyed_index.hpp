@@ -1,10 +1,9 @@
 // A set of (key, index) entries, each index 0..size-1 at most once, whose keys change in place,
-// walked in ascending (key, index) order without being changed. The hubs' lazy arc streams of
-// diagonal_flow.cpp: a key changes for every node a search settles, and a balanced tree spent a
-// fifth of a PD0 solve allocating, freeing and rebalancing for it. Here the entries form a binary
-// min-heap in one array (an update is a sift, no allocation), and a walk visits the heap best
-// first: a small frontier of heap positions, each position's children entering it when it is
-// passed, so the k-th entry walked costs O(log k).
+// walked in ascending (key, index) order without being changed. The hubs' lazy arc streams
+// (hub_arcs.hpp): a key changes for every node a search settles, so an update must neither
+// allocate nor rebalance. The entries form a binary min-heap in one array (an update is a sift),
+// and a walk visits the heap best first: a small frontier of heap positions, each position's
+// children entering it when it is passed, so the k-th entry walked costs O(log k).
 #pragma once
 
 #include <algorithm>

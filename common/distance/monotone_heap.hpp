@@ -7,7 +7,8 @@
 // rely on hub streams, then nodes, then tree boxes popping first at equal keys).
 // Ids in [0, tracked) are filed at most once: pushing one already filed with a smaller key
 // lowers it (its old entry is dropped where it lies when next met), with a larger key does
-// nothing. A W2 search after the line start relaxes each node it settles about ten times.
+// nothing: a search relaxes a node many times before it settles it, and only its lowest entry
+// is ever popped.
 #pragma once
 
 #include <algorithm>
