@@ -132,16 +132,7 @@ int run_single(SimdOptions options, const std::atomic<bool>& stop) {
       }
       report_frame(f);
     };
-  o.relaxed = [](const Relaxation& r) {  // once per run, also with --quiet
-    if (r.capped)
-      std::fprintf(stderr,
-                   "fnet-simd: warning: relaxation stopped by --relax-max-time after %lld steps, translational "
-                   "kinetic energy per grain %.3g above the target %.3g: compressing a start that is not at rest\n",
-                   static_cast<long long>(r.steps), r.energy, r.target);
-    else
-      std::fprintf(stderr, "fnet-simd: relaxed in %lld steps: translational kinetic energy per grain %.3g < %.3g\n",
-                   static_cast<long long>(r.steps), r.energy, r.target);
-  };
+  o.relaxed = print_relaxation;  // once per run, also with --quiet
   if (!checkpoint_path.empty()) {
     o.checkpoint = [&](const Simulation& s) { save_checkpoint(s, run_id, checkpoint_path, ensemble); };
     o.checkpoint_seconds = checkpoint_interval;
