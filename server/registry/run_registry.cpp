@@ -1,5 +1,6 @@
 #include "server/registry/run_registry.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <type_traits>
 #include <variant>
@@ -19,14 +20,22 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
 template <class F>
 auto Registry::locked_then_deliver(F&& f) {
   std::vector<std::shared_ptr<Outbox>> ready;
-  const auto take = [&] { ready.swap(ready_); };
+  std::vector<std::shared_ptr<RunStore>> stores;
+  const auto take = [&] {
+    ready.swap(ready_);
+    stores.swap(stores_ready_);
+  };
+  const auto flush = [&] {
+    for (const auto& store : stores) store->write_queued();
+    for (const auto& outbox : ready) deliver(*outbox);
+  };
   if constexpr (std::is_void_v<decltype(f())>) {
     {
       std::lock_guard lock(mutex_);
       f();
       take();
     }
-    for (const auto& outbox : ready) deliver(*outbox);
+    flush();
   } else {
     auto result = [&] {
       std::lock_guard lock(mutex_);
@@ -34,9 +43,16 @@ auto Registry::locked_then_deliver(F&& f) {
       take();
       return r;
     }();
-    for (const auto& outbox : ready) deliver(*outbox);
+    flush();
     return result;
   }
+}
+
+template <class Record>
+void Registry::store_locked(Run& run, Record&& record) {
+  run.store->queue(std::forward<Record>(record));
+  if (std::find(stores_ready_.begin(), stores_ready_.end(), run.store) == stores_ready_.end())
+    stores_ready_.push_back(run.store);
 }
 
 bool Registry::queue_locked(Subscription& s, const SeriesPoint& point) {
@@ -78,26 +94,32 @@ void Registry::deliver(Outbox& o) {
   if (gone) unsubscribe(o.id);
 }
 
-std::vector<std::string> Registry::load() {
-  std::lock_guard lock(mutex_);
-  return load_locked(nullptr);
-}
+std::vector<std::string> Registry::load() { return load_stores(nullptr); }
 
 Registry::Adopted Registry::adopt_new_stores() {
-  std::lock_guard lock(mutex_);
   Adopted out;
-  out.problems = load_locked(&out.runs);
+  out.problems = load_stores(&out.runs);
   return out;
 }
 
-std::vector<std::string> Registry::load_locked(std::vector<std::string>* only_new) {
+// The files are listed under the lock and read off it; each run read is installed under the lock.
+std::vector<std::string> Registry::load_stores(std::vector<std::string>* only_new) {
+  std::vector<std::filesystem::path> paths;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& entry : std::filesystem::directory_iterator(data_dir_)) {
+      if (entry.path().extension() != ".h5") continue;
+      // A rescan takes only the stores of runs the server does not know: the others it writes itself.
+      if (only_new && runs_.count(entry.path().stem().string())) continue;
+      paths.push_back(entry.path());
+    }
+  }
   std::vector<std::string> problems;
-  for (const auto& entry : std::filesystem::directory_iterator(data_dir_)) {
-    if (entry.path().extension() != ".h5") continue;
-    // A rescan takes only the stores of runs the server does not know: the others it writes itself.
-    if (only_new && runs_.count(entry.path().stem().string())) continue;
+  for (const std::filesystem::path& path : paths) {
     try {
-      StoredRun stored = read_store(entry.path());
+      StoredRun stored = read_store(path);
+      std::lock_guard lock(mutex_);
+      if (only_new && runs_.count(stored.info.run_id)) continue;  // it started streaming meanwhile
       Run& run = run_locked(stored.info.run_id);
       run.has_info = stored.has_info;
       run.last_activity = stored.last_activity();
@@ -126,11 +148,7 @@ Registry::Run& Registry::run_locked(const std::string& run_id) {
     run.run_id = run_id;
     run.info.run_id = run_id;
     run.pipeline = RunPipeline(limits_.gap_timeout);
-    try {
-      run.store = std::make_unique<StoreWriter>(store_path(data_dir_, run_id), run_id);
-    } catch (const std::exception& e) {
-      store_error_locked(run, e);
-    }
+    run.store = std::make_shared<RunStore>(store_path(data_dir_, run_id), run_id);
   }
   return run;
 }
@@ -141,30 +159,21 @@ void Registry::note_rejection_locked(std::string reason) {
   while (recent_rejections_.size() > limits_.reasons_kept) recent_rejections_.pop_front();
 }
 
-void Registry::store_error_locked(Run& run, const std::exception& e) {
-  // The analysis goes on in memory; the store stays as it was up to the failure.
-  run.store_problem = e.what();
-  std::cerr << "fnet-server: store of run " << run.run_id << ": " << e.what() << "\n";
-}
-
 void Registry::on_info(const RunInfo& info) {
-  std::lock_guard lock(mutex_);
-  if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
-    ++counters_.malformed;
-    note_rejection_locked("run announcement rejected: " + problem);
-    return;
-  }
-  Run& run = run_locked(info.run_id);
-  if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
-  run.has_info = true;
-  run.info = info;
-  run.last_activity = store_time_now();
-  if (run.store) try {
-      run.store->write_info(info);
-    } catch (const std::exception& e) {
-      store_error_locked(run, e);
+  locked_then_deliver([&] {
+    if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
+      ++counters_.malformed;
+      note_rejection_locked("run announcement rejected: " + problem);
+      return;
     }
-  if (announcement_listener_) announcement_listener_(info);
+    Run& run = run_locked(info.run_id);
+    if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
+    run.has_info = true;
+    run.info = info;
+    run.last_activity = store_time_now();
+    store_locked(run, info);
+    if (announcement_listener_) announcement_listener_(info);
+  });
 }
 
 void Registry::on_announcement(std::function<void(const RunInfo&)> listener) {
@@ -245,11 +254,7 @@ void Registry::publish_locked(Run& run) {
 
 // The store and the subscribers see index order, the pipeline's.
 void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame) {
-  if (run.store) try {
-      run.store->append(*frame);
-    } catch (const std::exception& e) {
-      store_error_locked(run, e);
-    }
+  store_locked(run, frame);
   if (frame->network) {  // the store keeps the network; memory keeps only the diagrams
     auto kept = std::make_shared<AnalyzedFrame>(*frame);
     kept->network.reset();
@@ -270,11 +275,7 @@ void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
   ++counters_.rejected;
   note_rejection_locked(rejected.reason);
   std::cerr << "fnet-server: rejected " << rejected.reason << "\n";
-  if (run.store) try {
-      run.store->append(rejected);
-    } catch (const std::exception& e) {
-      store_error_locked(run, e);
-    }
+  store_locked(run, rejected);
 }
 
 void Registry::check_gaps() {
@@ -367,21 +368,20 @@ std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, 
 }
 
 Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
-  std::lock_guard lock(mutex_);
   const std::string what = "run " + run_id + " frame " + std::to_string(index);
-  const auto it = runs_.find(run_id);
-  if (it == runs_.end() || !it->second.committed.count(index))
-    throw NetworkUnavailable(what + ": no such analyzed frame");
-  const Run& run = it->second;
-  if (!run.store)
-    throw NetworkUnavailable(what + ": the force network is not stored: the run has no store (" + run.store_problem +
-                             ")");
+  std::shared_ptr<RunStore> store;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = runs_.find(run_id);
+    if (it == runs_.end() || !it->second.committed.count(index))
+      throw NetworkUnavailable(what + ": no such analyzed frame");
+    store = it->second.store;
+  }
   std::optional<Frame> network;
   try {
-    network = run.store->network(index);
+    network = store->network(index);  // off the registry's lock
   } catch (const std::exception& e) {
-    throw NetworkUnavailable(what + ": the force network is not stored: " + e.what() +
-                             (run.store_problem.empty() ? "" : " (" + run.store_problem + ")"));
+    throw NetworkUnavailable(what + ": the force network is not stored: " + e.what());
   }
   if (!network)
     throw NetworkUnavailable(what + ": the force network is not stored: the frame was analyzed before the store " +

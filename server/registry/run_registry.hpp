@@ -3,7 +3,10 @@
 // predecessors, a frame missing for longer than the gap timeout skipped, distances to the
 // previous accepted frame). The registry adds the concurrency, running the pipelines' jobs on a
 // bounded thread pool under one lock, and the publication: what a pipeline settles is committed
-// in index order to the run's store and to the subscribers. A restart reloads every store.
+// in index order to the run's store and to the subscribers. The lock guards memory only: the
+// stores are written and read under locks of their own (run_store.hpp) and the subscribers are
+// served from their outboxes (subscriber.hpp), both after it is released. A restart reloads every
+// store.
 #pragma once
 
 #include <chrono>
@@ -24,6 +27,7 @@
 #include "common/analysis/run_pipeline.hpp"
 #include "common/run/run_frame.hpp"
 #include "common/store/analysis_store.hpp"
+#include "server/registry/run_store.hpp"
 #include "server/registry/subscriber.hpp"
 
 namespace fnet::server {
@@ -133,8 +137,7 @@ class Registry {
     std::vector<RejectedFrame> rejected;
     std::optional<StoreTime> last_activity;
     StoreTime known_since = store_time_now();
-    std::unique_ptr<StoreWriter> store;
-    std::string store_problem;  // why there is no store, or why it stopped taking frames
+    std::shared_ptr<RunStore> store;  // never null
   };
   // A subscription's queue of points not yet delivered; its mutex orders pushes against the
   // delivery, which one thread at a time performs.
@@ -154,7 +157,8 @@ class Registry {
   // Queues a point in a subscription's outbox, marked for delivery; ends a subscription whose
   // outbox is full. Returns whether the subscription goes on.
   bool queue_locked(Subscription& s, const SeriesPoint& point);
-  // Runs `f` under the lock, then delivers what it queued, off the lock.
+  // Runs `f` under the lock; then, off the lock, writes out the stores it queued writes to and
+  // delivers the points it queued (a subscriber sees a point once its frame is in the store).
   template <class F>
   auto locked_then_deliver(F&& f);
   void deliver(Outbox& outbox);
@@ -165,7 +169,9 @@ class Registry {
   void publish_locked(Run& run);
   void commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame);
   void reject_locked(Run& run, const RejectedFrame& rejected);
-  void store_error_locked(Run& run, const std::exception& e);
+  // Queues a write to the run's store, written out when the lock is released.
+  template <class Record>
+  void store_locked(Run& run, Record&& record);
   void note_rejection_locked(std::string reason);
   RunSummary summary_locked(const std::string& id, const Run& run) const;
 
@@ -173,13 +179,14 @@ class Registry {
   boost::asio::thread_pool& pool_;
   const RegistryLimits limits_;
   // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
-  // runs it adopts there.
-  std::vector<std::string> load_locked(std::vector<std::string>* only_new);
+  // runs it adopts there. Reads the files off the lock.
+  std::vector<std::string> load_stores(std::vector<std::string>* only_new);
   std::function<void(const RunInfo&)> announcement_listener_;
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
   std::map<std::uint64_t, Subscription> subscriptions_;
   std::vector<std::shared_ptr<Outbox>> ready_;  // outboxes with points queued since the last delivery
+  std::vector<std::shared_ptr<RunStore>> stores_ready_;  // stores with writes queued since then
   std::uint64_t next_subscription_ = 1;
   Counters counters_;
   std::deque<std::string> recent_rejections_;

@@ -1,6 +1,11 @@
 // The registry writes each accepted frame's network to the run's store and keeps none in memory:
-// a network is read back from the store when asked for, also by a registry that reloaded it.
+// a network is read back from the store when asked for, also by a registry that reloaded it. The
+// store is written off the registry's lock: a frame is readable as soon as it is committed, and a
+// store that fails stops neither the analysis nor the answers.
+#include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <string>
 #include <thread>
 
 #include <boost/asio/thread_pool.hpp>
@@ -66,6 +71,84 @@ TEST(RegistryNetwork, NetworksGoToTheStoreNotToMemoryAndComeBackAfterAReload) {
   } catch (const NetworkUnavailable& e) {
     EXPECT_NE(std::string(e.what()).find("run other frame 0"), std::string::npos) << e.what();
   }
+}
+
+TEST(RegistryNetwork, EveryCommittedFrameReadsBackAtOnceWhileFramesFlowIn) {
+  testing::TempDir dir;
+  boost::asio::thread_pool pool(2);
+  Registry registry(dir.path(), pool);
+  const std::uint32_t n = 12;
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> reads{0};
+  std::string failure;
+  std::thread reader([&] {
+    while (!done) {
+      for (std::uint32_t k = 0; k < n; ++k) {
+        if (!registry.frame("nets", k)) continue;  // not committed yet
+        try {
+          const Frame got = registry.network("nets", k);
+          if (got.contacts.size() != testing::lammps_frame(k % testing::lammps_frame_count()).contacts.size())
+            failure = "frame " + std::to_string(k) + " read back with another network";
+          ++reads;
+        } catch (const std::exception& e) {
+          failure = e.what();
+        }
+      }
+    }
+  });
+  for (std::uint32_t k = 0; k < n; ++k) registry.on_frame(run_frame(k, k % testing::lammps_frame_count()));
+  wait_for(registry, n);
+  done = true;
+  reader.join();
+  EXPECT_EQ(failure, "");
+  EXPECT_GT(reads.load(), 0u);
+  EXPECT_EQ(registry.network("nets", n - 1).contacts.size(),
+            testing::lammps_frame((n - 1) % testing::lammps_frame_count()).contacts.size());
+}
+
+TEST(RegistryNetwork, AStoreThatCannotBeWrittenStopsNeitherTheAnalysisNorTheAnswers) {
+  testing::TempDir dir;
+  boost::asio::thread_pool pool(2);
+  std::filesystem::create_directories(store_path(dir.path(), "nets"));  // where the file would go
+  Registry registry(dir.path(), pool);
+  registry.on_frame(run_frame(0, 0));
+  registry.on_frame(run_frame(1, 1));
+  wait_for(registry, 2);
+  const auto s = registry.run("nets");
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->frames, 2u);
+  EXPECT_TRUE(registry.frame("nets", 1));
+  try {
+    registry.network("nets", 1);
+    ADD_FAILURE() << "the store was never written";
+  } catch (const NetworkUnavailable& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("run nets frame 1: the force network is not stored: the run has no store ("),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("nets.h5"), std::string::npos) << "the cause names the file: " << what;
+  }
+}
+
+TEST(RegistryNetwork, AReloadedRunIsReadThenContinued) {
+  testing::TempDir dir;
+  boost::asio::thread_pool pool(2);
+  {
+    Registry registry(dir.path(), pool);
+    registry.on_frame(run_frame(0, 0));
+    registry.on_frame(run_frame(1, 1));
+    wait_for(registry, 2);
+  }
+  Registry reloaded(dir.path(), pool);
+  ASSERT_TRUE(reloaded.load().empty());
+  EXPECT_EQ(reloaded.network("nets", 1).contacts.size(), testing::lammps_frame(1).contacts.size());
+  reloaded.on_frame(run_frame(2, 2));
+  wait_for(reloaded, 3);
+  for (std::uint32_t k = 0; k < 3; ++k)
+    EXPECT_EQ(reloaded.network("nets", k).contacts.size(), testing::lammps_frame(k).contacts.size()) << k;
+  Registry again(dir.path(), pool);
+  ASSERT_TRUE(again.load().empty());
+  EXPECT_EQ(again.run("nets")->frames, 3u);
 }
 
 }  // namespace
