@@ -185,7 +185,7 @@ class Registry {
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
   std::map<std::uint64_t, Subscription> subscriptions_;
-  std::vector<std::shared_ptr<Outbox>> ready_;  // outboxes with points queued since the last delivery
+  std::vector<std::shared_ptr<Outbox>> ready_;           // outboxes with points queued since the last delivery
   std::vector<std::shared_ptr<RunStore>> stores_ready_;  // stores with writes queued since then
   std::uint64_t next_subscription_ = 1;
   Counters counters_;

@@ -6,7 +6,8 @@
 
 namespace fnet::server {
 
-RunStore::RunStore(std::filesystem::path path, std::string run_id) : path_(std::move(path)), run_id_(std::move(run_id)) {}
+RunStore::RunStore(std::filesystem::path path, std::string run_id)
+    : path_(std::move(path)), run_id_(std::move(run_id)) {}
 
 void RunStore::push(Record record, StoreTime at) {
   std::lock_guard lock(queue_mutex_);

@@ -123,8 +123,7 @@ TEST(RegistryNetwork, AStoreThatCannotBeWrittenStopsNeitherTheAnalysisNorTheAnsw
     ADD_FAILURE() << "the store was never written";
   } catch (const NetworkUnavailable& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("run nets frame 1: the force network is not stored: the run has no store ("),
-              std::string::npos)
+    EXPECT_NE(what.find("run nets frame 1: the force network is not stored: the run has no store ("), std::string::npos)
         << what;
     EXPECT_NE(what.find("nets.h5"), std::string::npos) << "the cause names the file: " << what;
   }
