@@ -17,6 +17,11 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
   std::filesystem::create_directories(data_dir_);
 }
 
+Registry::~Registry() {
+  std::unique_lock lock(mutex_);
+  flushed_.wait(lock, [this] { return flushing_ == 0; });
+}
+
 template <class F>
 auto Registry::locked_then_deliver(F&& f) {
   std::vector<std::shared_ptr<Outbox>> ready;
@@ -24,10 +29,14 @@ auto Registry::locked_then_deliver(F&& f) {
   const auto take = [&] {
     ready.swap(ready_);
     stores.swap(stores_ready_);
+    if (!ready.empty() || !stores.empty()) ++flushing_;
   };
   const auto flush = [&] {
+    if (ready.empty() && stores.empty()) return;
     for (const auto& store : stores) store->write_queued();
     for (const auto& outbox : ready) deliver(*outbox);
+    std::lock_guard lock(mutex_);
+    if (--flushing_ == 0) flushed_.notify_all();
   };
   if constexpr (std::is_void_v<decltype(f())>) {
     {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <filesystem>
@@ -67,6 +68,11 @@ struct RegistryLimits {
 class Registry {
  public:
   Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits = {});
+  // Waits until what was committed is written to the stores and delivered. The pool's jobs must
+  // have ended (the server joins the pool first).
+  ~Registry();
+  Registry(const Registry&) = delete;
+  Registry& operator=(const Registry&) = delete;
 
   // Reads every store in the data directory; returns messages about stores that could not be read.
   std::vector<std::string> load();
@@ -187,6 +193,8 @@ class Registry {
   std::map<std::uint64_t, Subscription> subscriptions_;
   std::vector<std::shared_ptr<Outbox>> ready_;           // outboxes with points queued since the last delivery
   std::vector<std::shared_ptr<RunStore>> stores_ready_;  // stores with writes queued since then
+  std::size_t flushing_ = 0;  // threads writing out stores and delivering points after the lock
+  std::condition_variable flushed_;
   std::uint64_t next_subscription_ = 1;
   Counters counters_;
   std::deque<std::string> recent_rejections_;
