@@ -4,9 +4,15 @@
 
 namespace fnet {
 
+bool is_stored(const StepQuery& query) { return query.metric.stored && query.essential == EssentialConvention::floor; }
+
+bool is_stored(const SeriesMeasure& measure) {
+  return is_stored(measure.query) && (!measure.denominator || is_stored(*measure.denominator));
+}
+
 void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
                         std::size_t from, std::vector<StepValue>& out) {
-  const bool stored = query.metric.stored && query.essential == EssentialConvention::floor;
+  const bool stored = is_stored(query);
   for (std::size_t k = from; k < frames.size(); ++k) {
     const AnalyzedFrame& f = *frames[k];
     StepValue step{f.header.index, f.header.rho, f.header.z, std::nullopt};

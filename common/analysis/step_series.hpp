@@ -32,6 +32,11 @@ struct SeriesMeasure {
   std::string ratio;  // "wasserstein1" | "wasserstein2" with a denominator, else empty
 };
 
+// Whether the values are read from the stored series (a metric of kStoredSeries under the floor
+// convention) rather than computed from the frames' diagrams.
+bool is_stored(const StepQuery& query);
+bool is_stored(const SeriesMeasure& measure);
+
 // Frame indices 'from'..'to', inclusive, each optional.
 struct FrameRange {
   std::optional<std::uint32_t> from, to;

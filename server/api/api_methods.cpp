@@ -261,6 +261,7 @@ json checked_params(const std::string& method, const Method& m, const json& para
 MethodTable method_table(ApiContext& ctx) {
   Registry& registry = ctx.registry;
   const auto subscriptions = std::make_shared<Subscriptions>(ctx);
+  // distance.get and blocks.get compute (and may read two networks back from the store): heavy.
   const auto plain = [](auto fn) {
     return [fn](const json& params, const std::shared_ptr<rpc::Peer>&) { return fn(params); };
   };
@@ -272,10 +273,10 @@ MethodTable method_table(ApiContext& ctx) {
        {{"frame", "run", "dim", "force"}, plain([&registry](const json& p) { return diagram_get(registry, p); })}},
       {"distance.get",
        {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta", "explain"},
-        plain([&registry](const json& p) { return distance_get(registry, p); })}},
+        heavy(plain([&registry](const json& p) { return distance_get(registry, p); }))}},
       {"blocks.get",
        {{"run", "frame", "other_frame", "k", "metric", "q", "dim", "force", "essential"},
-        plain([&registry](const json& p) { return blocks_get(registry, p); })}},
+        heavy(plain([&registry](const json& p) { return blocks_get(registry, p); }))}},
       {"series.subscribe",
        {{"run", "since"},
         [subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {
@@ -298,12 +299,25 @@ MethodTable method_table(ApiContext& ctx) {
 
 rpc::Handler make_api(ApiContext& ctx) {
   auto table = std::make_shared<const MethodTable>(method_table(ctx));
-  return [table](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session) -> json {
+  return [table, &ctx](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session,
+                       rpc::Completion done) {
     const auto it = table->find(method);
     if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
-    const json checked = checked_params(method, it->second, params);
-    const ReadingParams reading(it->second.params);
-    return it->second.run(checked, session);
+    const Method& m = it->second;
+    const json checked = checked_params(method, m, params);
+    Reply reply = [&] {
+      const ReadingParams reading(m.params);
+      return m.run(checked, session);
+    }();
+    if (json* result = std::get_if<json>(&reply)) return done(std::move(*result), nullptr);
+    ctx.offload([work = std::move(std::get<Deferred>(reply).work), declared = &m.params, done, table] {
+      try {
+        const ReadingParams reading(*declared);
+        done(work(), nullptr);
+      } catch (...) {
+        done(nullptr, std::current_exception());
+      }
+    });
   };
 }
 

@@ -468,12 +468,14 @@ MethodTable ensemble_methods(ApiContext& ctx) {
   return {
       {"ensembles.list",
        {{}, [&registry](const json&, const std::shared_ptr<rpc::Peer>&) { return ensembles_list(registry); }}},
-      {"ensemble.series",
-       {curve_params,
-        [&registry](const json& p, const std::shared_ptr<rpc::Peer>&) { return ensemble_series(registry, p); }}},
-      {"ensemble.subscribe",
-       {curve_params, [subscriptions](const json& p,
-                                      const std::shared_ptr<rpc::Peer>& s) { return subscriptions->subscribe(p, s); }}},
+      // A curve bins every frame of every member run, computed from the diagrams for a metric
+      // that is not stored: heavy.
+      {"ensemble.series", {curve_params, heavy([&registry](const json& p, const std::shared_ptr<rpc::Peer>&) {
+                             return ensemble_series(registry, p);
+                           })}},
+      {"ensemble.subscribe", {curve_params, heavy([subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {
+                                return subscriptions->subscribe(p, s);
+                              })}},
       {"ensemble.unsubscribe",
        {{"subscription"},
         [subscriptions](const json& p, const std::shared_ptr<rpc::Peer>& s) {

@@ -37,7 +37,11 @@ json series_get(const Registry& registry, const json& params) {
 
 Method series_get_method(const Registry& registry) {
   return {{"metric", "q", "run", "dim", "force", "essential", "from", "to", "ratio"},
-          [&registry](const json& params, const std::shared_ptr<rpc::Peer>&) { return series_get(registry, params); }};
+          [&registry](const json& params, const std::shared_ptr<rpc::Peer>&) -> Reply {
+            // A stored series is read at once; one computed frame by frame from the diagrams is heavy.
+            if (is_stored(get_series_measure(params))) return series_get(registry, params);
+            return Deferred{[&registry, params] { return series_get(registry, params); }};
+          }};
 }
 
 }  // namespace fnet::server

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include <boost/asio/ip/address.hpp>
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/program_options.hpp>
 
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
     boost::asio::io_context io;
     fnet::server::ApiContext context{registry};
     context.max_subscriptions_per_connection = max_subscriptions;
+    context.offload = [&pool](std::function<void()> work) { boost::asio::post(pool, std::move(work)); };
     fnet::rpc::ServerLimits rpc_limits;
     rpc_limits.max_connections = max_connections;
     rpc_limits.max_line_bytes = max_line;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -24,8 +25,16 @@ class Peer {
   virtual void on_close(std::function<void()> fn) = 0;
 };
 
-// The methods as every transport calls them: on a transport's thread, for each well-formed request;
-// returns the result or throws rpc::Error. They see the caller as a Peer only.
-using Handler = std::function<json(const std::string& method, const json& params, const std::shared_ptr<Peer>& peer)>;
+// How a call ends: its result, or the exception it ended with (rpc::Error for the caller's
+// mistakes; any other is an internal error).
+using Completion = std::function<void(json result, std::exception_ptr error)>;
+
+// The methods as every transport calls them: on a transport's thread, for each well-formed
+// request. The handler calls `done` exactly once: at once, or later from another thread (a heavy
+// method's work runs on the analysis pool), so answers may leave in another order than the
+// requests came in; the caller matches them by id. A handler that throws has ended the call with
+// that exception. Methods see the caller as a Peer only.
+using Handler = std::function<void(const std::string& method, const json& params, const std::shared_ptr<Peer>& peer,
+                                   Completion done)>;
 
 }  // namespace fnet::rpc

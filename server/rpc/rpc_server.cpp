@@ -1,7 +1,10 @@
 #include "server/rpc/rpc_server.hpp"
 
 #include <array>
+#include <atomic>
+#include <exception>
 #include <istream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -13,32 +16,71 @@ namespace {
 
 std::atomic<std::uint64_t> next_session_id{1};
 
-// Validates one request object and runs it; returns the response, or null for a notification.
-json dispatch(const json& request, const Handler& handler, const std::shared_ptr<Peer>& peer) {
-  const bool has_id = request.is_object() && request.contains("id");
-  const json id = has_id ? request["id"] : json(nullptr);
-  if (!request.is_object()) return error_response(nullptr, kInvalidRequest, "a request must be a JSON object");
-  if (has_id && !(id.is_string() || id.is_number_integer() || id.is_null()))
-    return error_response(nullptr, kInvalidRequest, "'id' must be a string, an integer or null");
-  if (request.value("jsonrpc", json()) != "2.0")
-    return error_response(id, kInvalidRequest, "'jsonrpc' must be \"2.0\"");
-  if (!request.contains("method") || !request["method"].is_string())
-    return error_response(id, kInvalidRequest, "'method' must be a string");
-  const json params = request.value("params", json::object());
-  if (!params.is_object() && !params.is_array())
-    return error_response(id, kInvalidRequest, "'params' must be an object or an array");
+// The response to a call that ended with `result` or `error`; null for a notification.
+json answer(const json& id, bool has_id, json result, const std::exception_ptr& error) {
+  if (!has_id) return json();
+  if (!error) return response(id, std::move(result));
   try {
-    json result = handler(request["method"].get<std::string>(), params, peer);
-    return has_id ? response(id, std::move(result)) : json();
+    std::rethrow_exception(error);
   } catch (const Error& e) {
-    return has_id ? error_response(id, e.code(), e.what(), e.data()) : json();
+    return error_response(id, e.code(), e.what(), e.data());
   } catch (const json::exception&) {
     // Handlers check every parameter's type; reaching here is a bug, not the client's fault.
-    return has_id ? error_response(id, kInternalError, "internal error while reading the params") : json();
+    return error_response(id, kInternalError, "internal error while reading the params");
   } catch (const std::exception& e) {
-    return has_id ? error_response(id, kInternalError, e.what()) : json();
+    return error_response(id, kInternalError, e.what());
+  } catch (...) {
+    return error_response(id, kInternalError, "internal error");
   }
 }
+
+// Validates one request object and runs it; `reply` gets its response (null for a notification)
+// exactly once, at once or from the thread that ends the call.
+void dispatch(const json& request, const Handler& handler, const std::shared_ptr<Peer>& peer,
+              const std::function<void(json)>& reply) {
+  const bool has_id = request.is_object() && request.contains("id");
+  const json id = has_id ? request["id"] : json(nullptr);
+  if (!request.is_object()) return reply(error_response(nullptr, kInvalidRequest, "a request must be a JSON object"));
+  if (has_id && !(id.is_string() || id.is_number_integer() || id.is_null()))
+    return reply(error_response(nullptr, kInvalidRequest, "'id' must be a string, an integer or null"));
+  if (request.value("jsonrpc", json()) != "2.0")
+    return reply(error_response(id, kInvalidRequest, "'jsonrpc' must be \"2.0\""));
+  if (!request.contains("method") || !request["method"].is_string())
+    return reply(error_response(id, kInvalidRequest, "'method' must be a string"));
+  const json params = request.value("params", json::object());
+  if (!params.is_object() && !params.is_array())
+    return reply(error_response(id, kInvalidRequest, "'params' must be an object or an array"));
+  const auto ended = std::make_shared<std::atomic<bool>>(false);
+  const Completion done = [reply, id, has_id, ended](json result, std::exception_ptr error) {
+    if (!ended->exchange(true)) reply(answer(id, has_id, std::move(result), error));
+  };
+  try {
+    handler(request["method"].get<std::string>(), params, peer, done);
+  } catch (...) {
+    done(nullptr, std::current_exception());
+  }
+}
+
+// The responses of one batch, sent together once every call of it has ended.
+class Batch {
+ public:
+  explicit Batch(std::size_t calls) : slots_(calls), remaining_(calls) {}
+  // Returns the responses to send when this was the batch's last call.
+  std::optional<json> put(std::size_t k, json response) {
+    std::lock_guard lock(mutex_);
+    slots_[k] = std::move(response);
+    if (--remaining_ > 0) return std::nullopt;
+    json all = json::array();
+    for (json& r : slots_)
+      if (!r.is_null()) all.push_back(std::move(r));
+    return all;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<json> slots_;
+  std::size_t remaining_;
+};
 
 }  // namespace
 
@@ -85,7 +127,7 @@ void Session::read_next() {
         if (ec == asio::error::eof) {  // the client is done sending: answer what it asked, then close
           std::lock_guard lock(self->mutex_);
           self->close_when_flushed_ = true;
-          if (!self->writing_) asio::post(self->strand_, [self] { self->close(); });
+          if (!self->writing_ && self->pending_calls_ == 0) asio::post(self->strand_, [self] { self->close(); });
           return;
         }
         if (ec) return self->close();
@@ -94,6 +136,12 @@ void Session::read_next() {
         line.pop_back();  // '\n'
         if (!line.empty() && line.back() == '\r') line.pop_back();
         self->handle_line(line);
+        {
+          // A client with max_pending_calls calls unanswered is read again when one ends.
+          std::lock_guard lock(self->mutex_);
+          self->read_paused_ = self->pending_calls_ >= self->limits_.max_pending_calls;
+          if (self->read_paused_) return;
+        }
         if (!self->closed_) self->read_next();
       }));
 }
@@ -110,21 +158,48 @@ void Session::handle_line(const std::string& line) {
     return;
   }
   const auto self = shared_from_this();
-  if (request.is_array()) {
-    if (request.empty()) {
-      send(error_response(nullptr, kInvalidRequest, "empty batch"));
-      return;
-    }
-    json responses = json::array();
-    for (const json& r : request) {
-      json one = dispatch(r, handler_, self);
-      if (!one.is_null()) responses.push_back(std::move(one));
-    }
-    if (!responses.empty()) send(responses);
+  if (request.is_array() && request.empty()) {
+    send(error_response(nullptr, kInvalidRequest, "empty batch"));
     return;
   }
-  json one = dispatch(request, handler_, self);
-  if (!one.is_null()) send(one);
+  begin_call();
+  if (request.is_array()) {
+    const auto batch = std::make_shared<Batch>(request.size());
+    for (std::size_t k = 0; k < request.size(); ++k)
+      dispatch(request[k], handler_, self, [self, batch, k](json one) {
+        const std::optional<json> all = batch->put(k, std::move(one));
+        if (!all) return;
+        if (!all->empty()) self->send(*all);
+        self->end_call();
+      });
+    return;
+  }
+  dispatch(request, handler_, self, [self](json one) {
+    if (!one.is_null()) self->send(one);
+    self->end_call();
+  });
+}
+
+void Session::begin_call() {
+  std::lock_guard lock(mutex_);
+  ++pending_calls_;
+}
+
+// After the call's response is queued: reading resumes when it waited for this call, and a
+// connection whose client has stopped sending finishes once nothing is left to answer or write.
+void Session::end_call() {
+  bool resume = false, finish_now = false;
+  {
+    std::lock_guard lock(mutex_);
+    --pending_calls_;
+    if (read_paused_ && pending_calls_ < limits_.max_pending_calls) {
+      read_paused_ = false;
+      resume = !close_when_flushed_;
+    }
+    finish_now = close_when_flushed_ && pending_calls_ == 0 && !writing_ && !closed_;
+  }
+  if (resume) asio::post(strand_, [self = shared_from_this()] { self->read_next(); });
+  if (finish_now) asio::post(strand_, [self = shared_from_this()] { self->finish(); });
 }
 
 bool Session::send(const json& message) {
@@ -164,7 +239,7 @@ void Session::write_next() {
           self->output_.pop_front();
           more = !ec && !self->output_.empty();
           if (!more) self->writing_ = false;
-          close_now = ec || (!more && self->close_when_flushed_);
+          close_now = ec || (!more && self->close_when_flushed_ && self->pending_calls_ == 0);
         }
         if (ec) return self->close();
         if (close_now) return self->finish();

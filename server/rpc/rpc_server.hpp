@@ -1,5 +1,6 @@
 // Newline-delimited JSON-RPC 2.0 over TCP (Boost.Asio). One request per line, one response per
-// line; handlers may also push notifications to their session at any time, from any thread.
+// line, matched by id (a heavy call may be answered after later ones); handlers may also push
+// notifications to their session at any time, from any thread.
 // Everything a client can make the server hold is bounded: line length, connections, bytes
 // queued for a client that does not read (that client is dropped).
 #pragma once
@@ -26,6 +27,7 @@ struct ServerLimits {
   std::size_t max_line_bytes = 1 << 20;     // a longer request gets an error and the connection closes
   std::size_t max_connections = 256;        // beyond: an error line, then close
   std::size_t max_queued_bytes = 16 << 20;  // unread output beyond this drops the client
+  std::size_t max_pending_calls = 32;       // calls of one connection unanswered at once; beyond, its input waits
 };
 
 // One TCP connection: newline-delimited requests in, responses and notifications out.
@@ -44,6 +46,8 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
  private:
   void read_next();
   void handle_line(const std::string& line);
+  void begin_call();
+  void end_call();
   void write_next();
   void finish();
   void drain(const std::shared_ptr<boost::asio::steady_timer>& timer);
@@ -60,6 +64,8 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
   std::size_t queued_bytes_ = 0;
   bool writing_ = false;
   bool close_when_flushed_ = false;
+  std::size_t pending_calls_ = 0;  // requests (a batch counts once) whose answer is not yet queued
+  bool read_paused_ = false;       // reading waits for a call to end
   std::vector<std::function<void()>> close_callbacks_;
   std::atomic<bool> closed_{false};
   std::uint64_t id_;

@@ -1,0 +1,115 @@
+// Which requests are heavy: those that compute distances (distance.get, blocks.get, the curves,
+// a series that is not stored) hand their work to ApiContext::offload, fnet-server's analysis
+// pool, and end their call from there; the others answer at once on the transport's thread.
+#include <exception>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/asio/thread_pool.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "server/api/api_methods.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fnet::server {
+namespace {
+
+using json = nlohmann::json;
+
+struct Api {
+  testing::TempDir dir;
+  boost::asio::thread_pool pool{1};
+  Registry registry{dir.path(), pool};
+  ApiContext context{registry};
+  std::vector<std::function<void()>> offloaded;
+  Api() {
+    context.offload = [this](std::function<void()> work) { offloaded.push_back(std::move(work)); };
+  }
+};
+
+struct Ended {
+  bool called = false;
+  json result;
+  std::exception_ptr error;
+};
+
+// Calls `method` through make_api; returns how the call ended so far.
+Ended call(Api& api, const rpc::Handler& handler, const std::string& method, const json& params) {
+  Ended ended;
+  try {
+    handler(method, params, nullptr, [&](json r, std::exception_ptr e) {
+      ended.called = true;
+      ended.result = std::move(r);
+      ended.error = e;
+    });
+  } catch (...) {
+    ended.called = true;
+    ended.error = std::current_exception();
+  }
+  // Run what was offloaded, as the pool would, and see it end the call.
+  while (!api.offloaded.empty()) {
+    EXPECT_FALSE(ended.called) << method << " ended before its offloaded work ran";
+    auto work = std::move(api.offloaded.front());
+    api.offloaded.erase(api.offloaded.begin());
+    work();
+  }
+  return ended;
+}
+
+int error_code(const Ended& e) {
+  try {
+    std::rethrow_exception(e.error);
+  } catch (const rpc::Error& err) {
+    return err.code();
+  } catch (...) {
+    return 0;
+  }
+}
+
+TEST(HeavyMethods, DistancesBlocksCurvesAndComputedSeriesRunOffloadedTheRestAtOnce) {
+  Api api;
+  const rpc::Handler handler = make_api(api.context);
+  struct Case {
+    std::string method;
+    json params;
+    bool heavy;
+  };
+  const std::vector<Case> cases{
+      {"distance.get", {{"run", "r"}, {"frame", 1}, {"other_frame", 0}, {"metric", "bottleneck"}}, true},
+      {"blocks.get", {{"run", "r"}, {"frame", 1}, {"other_frame", 0}, {"metric", "bottleneck"}}, true},
+      {"ensemble.series", {{"run", "r"}, {"metric", "bottleneck"}}, true},
+      {"series.get", {{"run", "r"}, {"metric", "wasserstein"}, {"q", 3}}, true},
+      {"series.get", {{"run", "r"}, {"metric", "bottleneck"}, {"essential", "separate"}}, true},
+      {"series.get", {{"run", "r"}, {"metric", "bottleneck"}}, false},
+      {"series.get", {{"run", "r"}, {"ratio", "wasserstein1"}}, false},
+      {"diagram.get", {{"run", "r"}, {"frame", 0}}, false},
+      {"run.get", {{"run", "r"}}, false},
+  };
+  for (const Case& c : cases) {
+    std::size_t offloaded = 0;
+    api.context.offload = [&](std::function<void()> work) {
+      ++offloaded;
+      api.offloaded.push_back(std::move(work));
+    };
+    const Ended e = call(api, handler, c.method, c.params);
+    EXPECT_EQ(offloaded, c.heavy ? 1u : 0u) << c.method << " " << c.params.dump();
+    ASSERT_TRUE(e.called) << c.method;
+    // No run 'r': every call ends with the unknown-run error, wherever it ran.
+    EXPECT_EQ(error_code(e), rpc::kUnknownRun) << c.method << " " << c.params.dump();
+  }
+  // Parameters are checked before any work is handed over: an unknown one ends the call at once.
+  std::size_t offloaded = 0;
+  api.context.offload = [&](std::function<void()> work) {
+    ++offloaded;
+    work();
+  };
+  const Ended bad = call(api, handler, "distance.get", {{"frame", 1}, {"other_frame", 0}, {"dimension", 1}});
+  EXPECT_EQ(offloaded, 0u);
+  EXPECT_EQ(error_code(bad), rpc::kInvalidParams);
+}
+
+}  // namespace
+}  // namespace fnet::server
