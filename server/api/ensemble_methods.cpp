@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <condition_variable>
-#include <deque>
 #include <limits>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "common/analysis/ensemble_curve.hpp"
 #include "common/analysis/jamming.hpp"
@@ -272,7 +269,7 @@ bool same_bin(const CurveBin& a, const CurveBin& b) {
 class EnsembleSubscriptions;
 
 // What an ensemble subscription asks of the registry: to be marked for recomputation when a
-// member run commits a frame (the curve is recomputed on the subscriptions' own thread).
+// member run commits a frame (the curve is recomputed on the analysis pool).
 class MarkOnCommit final : public Subscriber {
  public:
   MarkOnCommit(std::weak_ptr<EnsembleSubscriptions> owner, std::string ensemble)
@@ -285,7 +282,8 @@ class MarkOnCommit final : public Subscriber {
 };
 
 // Recomputes a subscription's curve after each commit of a member run, off the registry's lock
-// (commits only mark the subscription), and sends the bins that changed.
+// (a commit only marks the subscription; marks made before its recomputation starts count once),
+// through ApiContext::offload (the analysis pool), and sends the bins that changed.
 class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscriptions> {
  public:
   // The connections' sets end a subscription through a weak pointer: they may outlive this.
@@ -304,14 +302,6 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     return self;
   }
   explicit EnsembleSubscriptions(ApiContext& ctx) : ctx_(ctx) {}
-  ~EnsembleSubscriptions() {
-    {
-      std::lock_guard lock(mutex_);
-      stopping_ = true;
-    }
-    wake_.notify_all();
-    if (worker_.joinable()) worker_.join();
-  }
 
   json subscribe(const json& params, const std::shared_ptr<rpc::Peer>& session) {
     Registry& registry = ctx_.registry;
@@ -319,11 +309,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     sub->request = get_curve_request(registry, params);
     sub->session = session;
     held_->check_room(*session);
-    {
-      std::lock_guard lock(mutex_);
-      if (!worker_.joinable()) worker_ = std::thread([this] { work(); });
-    }
-    // Registered before the curve is first computed, and the worker waits for that computation
+    // Registered before the curve is first computed, and a recomputation waits for that computation
     // (the subscription's lock), so no commit falls between the reply and the first notification.
     std::unique_lock sub_lock(sub->mutex);
     std::weak_ptr<EnsembleSubscriptions> weak_self = weak_from_this();
@@ -372,7 +358,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     subscriptions_.erase(id);
   }
 
-  // Under the registry's lock: marks every subscription to `ensemble`'s curve.
+  // Marks every subscription to `ensemble`'s curve (a run announced as its member).
   void mark_ensemble(const std::string& ensemble) {
     if (ensemble.empty()) return;
     std::vector<std::uint64_t> ids;
@@ -384,35 +370,30 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
     for (const std::uint64_t id : ids) mark(id);
   }
 
-  // Under the registry's lock: only queues the id (once until it is served).
+  // Schedules the subscription's recomputation, once until it starts.
   void mark(std::uint64_t id) {
     {
       std::lock_guard lock(mutex_);
-      if (!queued_.insert(id).second) return;
-      queue_.push_back(id);
+      if (!scheduled_.insert(id).second) return;
     }
-    wake_.notify_one();
+    ctx_.offload([weak = weak_from_this(), id] {
+      if (const auto self = weak.lock()) self->recompute(id);
+    });
   }
 
-  void work() {
-    while (true) {
-      std::shared_ptr<Subscription> sub;
-      {
-        std::unique_lock lock(mutex_);
-        wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-        if (stopping_) return;
-        const std::uint64_t id = queue_.front();
-        queue_.pop_front();
-        queued_.erase(id);
-        const auto it = subscriptions_.find(id);
-        if (it == subscriptions_.end()) continue;
-        sub = it->second;
-      }
-      try {
-        update(*sub);
-      } catch (const std::exception&) {
-        // A curve that cannot be computed now (a member's diagrams unusable) is retried at the next commit.
-      }
+  void recompute(std::uint64_t id) {
+    std::shared_ptr<Subscription> sub;
+    {
+      std::lock_guard lock(mutex_);
+      scheduled_.erase(id);
+      const auto it = subscriptions_.find(id);
+      if (it == subscriptions_.end()) return;
+      sub = it->second;
+    }
+    try {
+      update(*sub);
+    } catch (const std::exception&) {
+      // A curve that cannot be computed now (a member's diagrams unusable) is retried at the next commit.
     }
   }
 
@@ -444,11 +425,7 @@ class EnsembleSubscriptions : public std::enable_shared_from_this<EnsembleSubscr
   std::shared_ptr<ConnectionSubscriptions> held_;
   std::mutex mutex_;  // guards what follows
   std::map<std::uint64_t, std::shared_ptr<Subscription>> subscriptions_;
-  std::deque<std::uint64_t> queue_;
-  std::set<std::uint64_t> queued_;
-  std::condition_variable wake_;
-  bool stopping_ = false;
-  std::thread worker_;
+  std::set<std::uint64_t> scheduled_;  // recomputations posted and not yet started
 };
 
 bool MarkOnCommit::deliver(std::uint64_t subscription, const SeriesPoint& p) {

@@ -169,20 +169,21 @@ void Registry::note_rejection_locked(std::string reason) {
 }
 
 void Registry::on_info(const RunInfo& info) {
-  locked_then_deliver([&] {
+  const auto listener = locked_then_deliver([&]() -> std::function<void(const RunInfo&)> {
     if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
       ++counters_.malformed;
       note_rejection_locked("run announcement rejected: " + problem);
-      return;
+      return nullptr;
     }
     Run& run = run_locked(info.run_id);
-    if (run.has_info && run.info == info) return;  // repeated announcement (a restarted reader)
+    if (run.has_info && run.info == info) return nullptr;  // repeated announcement (a restarted reader)
     run.has_info = true;
     run.info = info;
     run.last_activity = store_time_now();
     store_locked(run, info);
-    if (announcement_listener_) announcement_listener_(info);
+    return announcement_listener_;
   });
+  if (listener) listener(info);
 }
 
 void Registry::on_announcement(std::function<void(const RunInfo&)> listener) {

@@ -87,9 +87,9 @@ class Registry {
   Adopted adopt_new_stores();
 
   void on_info(const RunInfo& info);
-  // Called under the registry's lock with each new announcement of a run: from then on the run
-  // belongs to its ensemble, with the frames it had committed before. One listener (the ensemble
-  // subscriptions, which must then recompute even when the run commits nothing more).
+  // Called with each new announcement of a run, once it is recorded, off the registry's lock: from
+  // then on the run belongs to its ensemble, with the frames it had committed before. One listener
+  // (the ensemble subscriptions, which must then recompute even when the run commits nothing more).
   void on_announcement(std::function<void(const RunInfo&)> listener);
   void on_frame(RunFrame frame);
   void on_malformed(const std::string& reason);
