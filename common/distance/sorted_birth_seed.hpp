@@ -37,12 +37,12 @@ struct LineAlignment {
   bool optimal = false;
 };
 
-// half_width: the band, in ranks either side of the quantile line (widened by |n - m|). cost(i, j)
-// is the pair's cost, da/db the costs to the diagonal.
+// half_width: the band, in ranks either side of the quantile line (widened by |n - m|); the solver
+// passes DiagonalFlowParams::band. cost(i, j) is the pair's cost, da/db the costs to the diagonal.
 LineAlignment sorted_birth_alignment(std::span<const PlanePoint> a, std::span<const PlanePoint> b,
                                      std::span<const double> da, std::span<const double> db,
                                      const std::function<double(std::uint32_t, std::uint32_t)>& cost,
-                                     std::uint32_t half_width = 32);
+                                     std::uint32_t half_width);
 
 // Candidate pairs (i, j), i indexing a, j indexing b, possibly repeated: each matched pair and its
 // neighbours in rank.
@@ -52,7 +52,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> alignment_candidates(const 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_birth_candidates(
     std::span<const PlanePoint> a, std::span<const PlanePoint> b, std::span<const double> da,
     std::span<const double> db, const std::function<double(std::uint32_t, std::uint32_t)>& cost,
-    std::uint32_t half_width = 32);
+    std::uint32_t half_width);
 
 // The scale between two diagrams (forces are in units of their frame's mean, which moves from
 // frame to frame): the median ratio of births at equal quantiles, 1 when there is none.

@@ -10,12 +10,15 @@
 #include <gtest/gtest.h>
 
 #include "common/distance/diagonal_flow.hpp"
+#include "common/distance/diagonal_flow_params.hpp"
 #include "common/distance/sorted_birth_seed.hpp"
 #include "common/distance/wasserstein.hpp"
 #include "distance_support.hpp"
 
 namespace fnet::test {
 namespace {
+
+const std::uint32_t kBand = DiagonalFlowParams{}.band;  // the solver's band
 
 std::vector<PlanePoint> plane(const Diagram& d) { return apply_convention(d, EssentialConvention::floor).points; }
 
@@ -46,7 +49,7 @@ TEST(DistanceSparseStage, SortedBirthCandidatesHoldTheOneDimensionalOptimum) {
     for (const PlanePoint p : a) da.push_back(power(p.x / 2));
     for (const PlanePoint p : b) db.push_back(power(p.x / 2));
     const auto candidates = sorted_birth_candidates(
-        a, b, da, db, [&](std::uint32_t i, std::uint32_t j) { return power(linf_distance(a[i], b[j])); });
+        a, b, da, db, [&](std::uint32_t i, std::uint32_t j) { return power(linf_distance(a[i], b[j])); }, kBand);
     const std::set<std::pair<std::uint32_t, std::uint32_t>> set(candidates.begin(), candidates.end());
     DiagonalFlow complete(a, b, power);
     complete.solve_complete();
@@ -66,9 +69,9 @@ TEST(DistanceSparseStage, SortedBirthCandidatesOfEmptyAndOffLineInputs) {
   const std::vector<PlanePoint> none, some{{1, 0}, {2, 0.5}};
   const std::vector<double> d0, d2{0.5, 0.75};
   const auto cost = [](std::uint32_t, std::uint32_t) { return 1.0; };
-  EXPECT_TRUE(sorted_birth_candidates(none, some, d0, d2, cost).empty());
-  EXPECT_TRUE(sorted_birth_candidates(some, none, d2, d0, cost).empty());
-  for (const auto& [i, j] : sorted_birth_candidates(some, some, d2, d2, cost)) {
+  EXPECT_TRUE(sorted_birth_candidates(none, some, d0, d2, cost, kBand).empty());
+  EXPECT_TRUE(sorted_birth_candidates(some, none, d2, d0, cost, kBand).empty());
+  for (const auto& [i, j] : sorted_birth_candidates(some, some, d2, d2, cost, kBand)) {
     EXPECT_LT(i, 2u);
     EXPECT_LT(j, 2u);
   }
