@@ -21,7 +21,11 @@
 #include "server/api/block_methods.hpp"
 #include "server/api/connection_subscriptions.hpp"
 #include "server/api/ensemble_methods.hpp"
+#include "server/api/registry_frames.hpp"
 #include "server/api/series_methods.hpp"
+#include "server/api/served_query.hpp"
+#include "server/query/diagram_query.hpp"
+#include "server/query/pair_query.hpp"
 
 namespace fnet::server {
 namespace {
@@ -93,60 +97,56 @@ json run_get(const Registry& registry, const json& params) {
   return out;
 }
 
+// diagram.get: params -> DiagramRequest -> diagram_query -> JSON.
 json diagram_get(const Registry& registry, const json& params) {
-  const std::uint32_t index = require_index(params, "frame");
-  const int dim = get_dim(params);
-  const ForceKind force = get_force(params);
-  const std::string run = resolve_run(registry, params);
-  const auto f = registry.frame(run, index);
-  if (!f) unknown_frame(run, index);
-  const FrameDiagrams& d = f->diagrams[force];
-  return {{"run", run},
-          {"frame", index},
-          {"dim", dim},
-          {"force", to_string(force)},
-          {"rho", f->header.rho},
-          {"z", f->header.z},
+  query::DiagramRequest r;
+  r.frame = require_index(params, "frame");
+  r.dim = get_dim(params);
+  r.force = get_force(params);
+  r.run = resolve_run(registry, params);
+  const query::DiagramAnswer d = served([&] { return query::diagram_query(RegistryFrames(registry), r); });
+  return {{"run", r.run},
+          {"frame", r.frame},
+          {"dim", r.dim},
+          {"force", to_string(r.force)},
+          {"rho", d.header.rho},
+          {"z", d.header.z},
           {"vertices", d.vertices},
           {"edges", d.edges},
           {"triangles", d.triangles},
-          {"points", to_json(dim == 0 ? d.pd0 : d.pd1)}};
+          {"points", to_json(d.points)}};
 }
 
-json distance_get(const Registry& registry, const json& params) {
-  const std::uint32_t frame_a = require_index(params, "frame");
-  const std::uint32_t frame_b = require_index(params, "other_frame");
-  const StepQuery query = get_step_query(params);
-  const auto& [metric, dim, force, essential] = query;
-  const double delta = get_number(params, "delta").value_or(0);
-  if (!(delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
+// distance.get's parameters, each checked before any run is looked up.
+query::PairRequest get_pair_request(const Registry& registry, const json& params) {
+  query::PairRequest r;
+  r.frame = require_index(params, "frame");
+  r.other_frame = require_index(params, "other_frame");
+  r.measure = get_step_query(params);
+  r.delta = get_number(params, "delta").value_or(0);
+  if (!(r.delta >= 0)) invalid("delta", "parameter 'delta' must be >= 0 (0: exact)");
   const auto explain_terms = get_index(params, "explain");
   if (explain_terms && (*explain_terms < 1 || *explain_terms > kMaxExplainTerms))
     invalid("explain", "parameter 'explain' must be an integer from 1 to " + std::to_string(kMaxExplainTerms) +
                            " (the number of terms), got " + std::to_string(*explain_terms));
-  const std::string run_a = resolve_run(registry, params, "run");
-  const std::string run_b = find(params, "other_run") ? resolve_run(registry, params, "other_run") : run_a;
-  const auto a = registry.frame(run_a, frame_a), b = registry.frame(run_b, frame_b);
-  if (!a) unknown_frame(run_a, frame_a);
-  if (!b) unknown_frame(run_b, frame_b);
-  const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = choice_distance(diagram_of(a->diagrams, force, dim), diagram_of(b->diagrams, force, dim),
-                                           metric, essential, delta);
-  json out = to_json(r);
-  out.update(describe(query));
-  out["run"] = run_a;
-  out["frame"] = frame_a;
-  out["other_run"] = run_b;
-  out["other_frame"] = frame_b;
-  if (explain_terms) {
-    // The pairs are not stored with the diagrams: both networks are read back and their diagrams
-    // recomputed with the simplices that pair each point.
-    const Frame network_a = stored_network(registry, run_a, frame_a),
-                network_b = stored_network(registry, run_b, frame_b);
-    out["explain"] = explain_terms_json(
-        explain(network_a, network_b, {metric.distance(), dim, force, essential, *explain_terms}).terms);
-  }
-  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (explain_terms) r.explain_terms = *explain_terms;
+  r.run = resolve_run(registry, params, "run");
+  r.other_run = find(params, "other_run") ? resolve_run(registry, params, "other_run") : r.run;
+  return r;
+}
+
+// distance.get: params -> PairRequest -> pair_query -> JSON.
+json distance_get(const Registry& registry, const json& params) {
+  const query::PairRequest r = get_pair_request(registry, params);
+  const query::PairAnswer a = served([&] { return query::pair_query(RegistryFrames(registry), r); });
+  json out = to_json(a.distance);
+  out.update(describe(r.measure));
+  out["run"] = r.run;
+  out["frame"] = r.frame;
+  out["other_run"] = r.other_run;
+  out["other_frame"] = r.other_frame;
+  if (a.explained) out["explain"] = explain_terms_json(*a.explained);
+  out["seconds"] = a.seconds;
   return out;
 }
 

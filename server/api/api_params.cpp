@@ -207,12 +207,8 @@ std::string resolve_run(const Registry& registry, const json& params, std::strin
   return run;
 }
 
-Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index) {
-  try {
-    return registry.network(run, index);
-  } catch (const NetworkUnavailable& e) {
-    throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", index}, {"reason", e.what()}});
-  }
+[[noreturn]] void no_network(const std::string& run, std::uint32_t index, const std::string& reason) {
+  throw Error(rpc::kNoNetwork, reason, {{"run", run}, {"frame", index}, {"reason", reason}});
 }
 
 }  // namespace fnet::server

@@ -61,9 +61,8 @@ json describe(const StepQuery& query);
 // The same error, its message and data.close naming the server's runs closest to `run`.
 [[noreturn]] void unknown_run(const Registry& registry, const std::string& run);
 [[noreturn]] void unknown_frame(const std::string& run, std::uint32_t index);
-// A committed frame's force network read back from the run's store; error -32005 naming the run,
-// the frame and why when the store does not hold it.
-Frame stored_network(const Registry& registry, const std::string& run, std::uint32_t index);
+// Error -32005: a committed frame's force network cannot be had; names the run, the frame and why.
+[[noreturn]] void no_network(const std::string& run, std::uint32_t index, const std::string& reason);
 
 // The named run, or the newest one when the parameter is omitted.
 std::string resolve_run(const Registry& registry, const json& params, std::string_view name = "run");

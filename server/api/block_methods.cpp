@@ -1,15 +1,13 @@
 #include "server/api/block_methods.hpp"
 
-#include <chrono>
-#include <limits>
-
 #include "common/analysis/blocks.hpp"
 #include "server/api/api_params.hpp"
+#include "server/api/registry_frames.hpp"
+#include "server/api/served_query.hpp"
+#include "server/query/block_query.hpp"
 
 namespace fnet::server {
 namespace {
-
-using rpc::Error;
 
 int get_k(const json& params) {
   const json* v = find(params, "k");
@@ -26,55 +24,41 @@ int get_k(const json& params) {
 
 json bounds_json(const BlockCell& c) { return json::array({c.bounds[0], c.bounds[1], c.bounds[2], c.bounds[3]}); }
 
+json distance_value(const DistanceResult& d) { return d.infinite ? json(nullptr) : json(d.value); }
+
 }  // namespace
 
 json blocks_get(const Registry& registry, const json& params) {
-  const std::uint32_t frame_a = require_index(params, "frame");
-  const std::uint32_t frame_b = require_index(params, "other_frame");
-  const int k = get_k(params);
-  const StepQuery query = get_step_query(params);
-  const auto& [metric, dim, force, essential] = query;
-  const std::string run = resolve_run(registry, params);
-  if (!registry.frame(run, frame_a)) unknown_frame(run, frame_a);
-  if (!registry.frame(run, frame_b)) unknown_frame(run, frame_b);
-  const auto start = std::chrono::steady_clock::now();
-  const Frame a = stored_network(registry, run, frame_a), b = stored_network(registry, run, frame_b);
-  const auto split = [&](const Frame& f, std::uint32_t index) {
-    try {
-      return split_into_blocks(f, k);
-    } catch (const std::invalid_argument& e) {  // a stored frame without its grains' positions
-      throw Error(rpc::kNoNetwork, e.what(), {{"run", run}, {"frame", index}, {"reason", e.what()}});
-    }
-  };
-  const std::vector<BlockCell> cells_a = split(a, frame_a), cells_b = split(b, frame_b);
-  const std::vector<BlockDistance> d = block_distances(cells_a, cells_b, metric.distance(), dim, force, essential);
+  query::BlockRequest r;
+  r.frame = require_index(params, "frame");
+  r.other_frame = require_index(params, "other_frame");
+  r.k = get_k(params);
+  r.measure = get_step_query(params);
+  r.run = resolve_run(registry, params);
+  const query::BlockAnswer b = served([&] { return query::block_query(RegistryFrames(registry), r); });
 
   json cells = json::array();
-  std::size_t largest = 0;
-  const auto key = [&](std::size_t c) {
-    return d[c].distance.infinite ? std::numeric_limits<double>::infinity() : d[c].distance.value;
-  };
-  for (std::size_t c = 0; c < d.size(); ++c) {
-    const DistanceResult& r = d[c].distance;
-    if (key(c) > key(largest)) largest = c;
-    cells.push_back({{"row", cells_a[c].row},
-                     {"col", cells_a[c].col},
-                     {"bounds", json::array({bounds_json(cells_a[c]), bounds_json(cells_b[c])})},
-                     {"contacts", json::array({cells_a[c].contacts.size(), cells_b[c].contacts.size()})},
-                     {"points", json::array({d[c].points_a, d[c].points_b})},
-                     {"value", r.infinite ? json(nullptr) : json(r.value)},
-                     {"infinite", r.infinite}});
+  for (std::size_t c = 0; c < b.distances.size(); ++c) {
+    const BlockCell &cell = b.cells[c], &other = b.other_cells[c];
+    const DistanceResult& d = b.distances[c].distance;
+    cells.push_back({{"row", cell.row},
+                     {"col", cell.col},
+                     {"bounds", json::array({bounds_json(cell), bounds_json(other)})},
+                     {"contacts", json::array({cell.contacts.size(), other.contacts.size()})},
+                     {"points", json::array({b.distances[c].points_a, b.distances[c].points_b})},
+                     {"value", distance_value(d)},
+                     {"infinite", d.infinite}});
   }
-  json out = describe(metric, dim, force, essential);
-  out["run"] = run;
-  out["frame"] = frame_a;
-  out["other_frame"] = frame_b;
-  out["k"] = k;
+  json out = describe(r.measure);
+  out["run"] = r.run;
+  out["frame"] = r.frame;
+  out["other_frame"] = r.other_frame;
+  out["k"] = r.k;
   out["cells"] = cells;
-  out["largest"] = {{"row", cells_a[largest].row},
-                    {"col", cells_a[largest].col},
-                    {"value", d[largest].distance.infinite ? json(nullptr) : json(d[largest].distance.value)}};
-  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out["largest"] = {{"row", b.cells[b.largest].row},
+                    {"col", b.cells[b.largest].col},
+                    {"value", distance_value(b.distances[b.largest].distance)}};
+  out["seconds"] = b.seconds;
   return out;
 }
 

@@ -7,11 +7,12 @@
 #include <set>
 
 #include "common/analysis/ensemble_curve.hpp"
-#include "common/analysis/jamming.hpp"
 #include "common/analysis/step_series.hpp"
 #include "server/api/api_params.hpp"
 #include "server/api/connection_subscriptions.hpp"
+#include "server/api/registry_frames.hpp"
 #include "server/api/series_columns.hpp"
+#include "server/query/curve_query.hpp"
 
 namespace fnet::server {
 namespace {
@@ -25,15 +26,10 @@ constexpr double kDefaultBinWidth = 0.002;
 constexpr double kMinBinWidth = 1e-9;
 constexpr std::uint32_t kMaxBins = 1000000;
 
-enum class CurveAxis { rho, rho_minus_rho_j };
-
-// One ensemble.series request, every parameter checked.
-struct CurveRequest {
-  std::string ensemble, run;  // exactly one is non-empty
-  SeriesMeasure measure;      // the distance binned, or the ratio d_B / d_Wq
-  RhoBinning binning;
-  CurveAxis axis = CurveAxis::rho;
-};
+using query::Curve;
+using query::CurveAxis;
+using query::CurveRequest;
+using query::StepCache;
 
 [[noreturn]] void unknown_ensemble(const std::string& ensemble) {
   throw Error(rpc::kUnknownEnsemble, "unknown ensemble '" + ensemble + "': no announced run belongs to it",
@@ -81,65 +77,9 @@ CurveRequest get_curve_request(const Registry& registry, const json& params) {
   return r;
 }
 
-// The step values of each member run already computed, so that a subscription computes only the
-// frames committed since its last update (they matter when a distance is not stored).
-struct StepCache {
-  std::map<std::string, std::vector<StepValue>> numerator, denominator;
-};
-
-const std::vector<StepValue>& steps_of(const Registry::MemberRun& member, const StepQuery& query,
-                                       std::map<std::string, std::vector<StepValue>>& cache) {
-  std::vector<StepValue>& steps = cache[member.run_id];
-  // Frames are committed in index order, so a run's values only ever grow at the end.
-  const bool prefix = steps.size() <= member.frames.size() &&
-                      (steps.empty() || member.frames[steps.size() - 1]->header.index == steps.back().index);
-  if (!prefix) steps.clear();
-  append_step_values(member.frames, query, steps.size(), steps);
-  return steps;
-}
-
-struct Curve {
-  std::vector<std::string> runs, runs_without_rho_j;
-  std::vector<CurveBin> bins;
-};
-
+// The curve over the registry's runs as they are now (server/query/curve_query.hpp).
 Curve compute_curve(const Registry& registry, const CurveRequest& r, StepCache& cache) {
-  std::vector<Registry::MemberRun> members;
-  if (r.run.empty()) {
-    members = registry.ensemble_members(r.ensemble);
-  } else if (auto frames = registry.frames(r.run)) {
-    members.push_back({r.run, std::move(*frames)});
-  }
-  Curve c;
-  std::vector<CurveSample> numerator, denominator;
-  for (const Registry::MemberRun& m : members) {
-    double shift = 0;
-    if (r.axis == CurveAxis::rho_minus_rho_j) {
-      std::vector<double> rho, z;
-      for (const auto& f : m.frames) {
-        rho.push_back(f->header.rho);
-        z.push_back(f->header.z);
-      }
-      const auto rho_j = jamming_density(rho, z);
-      if (!rho_j) {
-        c.runs_without_rho_j.push_back(m.run_id);
-        continue;
-      }
-      shift = *rho_j;
-    }
-    // A run's index in `runs` (its place in name order) names its samples' realization.
-    const std::size_t run = c.runs.size();
-    c.runs.push_back(m.run_id);
-    const auto add = [&](std::vector<CurveSample>& to, const std::vector<StepValue>& steps) {
-      const std::vector<CurveSample> s = curve_samples(steps, shift, run);
-      to.insert(to.end(), s.begin(), s.end());
-    };
-    add(numerator, steps_of(m, r.measure.query, cache.numerator));
-    if (r.measure.denominator) add(denominator, steps_of(m, *r.measure.denominator, cache.denominator));
-  }
-  c.bins = bin_curve(numerator, r.binning);
-  if (r.measure.denominator) c.bins = ratio_curve(c.bins, bin_curve(denominator, r.binning));
-  return c;
+  return query::compute_curve(RegistryFrames(registry), r, cache);
 }
 
 json strings(const std::vector<std::string>& v) {

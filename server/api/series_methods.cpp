@@ -2,32 +2,33 @@
 
 #include <cmath>
 
-#include "common/analysis/step_series.hpp"
 #include "server/api/api_params.hpp"
+#include "server/api/registry_frames.hpp"
 #include "server/api/series_columns.hpp"
+#include "server/api/served_query.hpp"
+#include "server/query/series_query.hpp"
 
 namespace fnet::server {
 namespace {
 
 using json = nlohmann::json;
 
-// request -> query (series_values) -> codec (SeriesColumns).
+// series.get: params -> SeriesRequest -> series_query -> SeriesColumns.
 json series_get(const Registry& registry, const json& params) {
-  const SeriesMeasure measure = get_series_measure(params);
-  const FrameRange range = get_frame_range(params);
-  const std::string run = resolve_run(registry, params);
-  const auto frames = registry.frames(run);
-  if (!frames) unknown_run(run);
-  const SeriesValues values = series_values(*frames, measure, range);
+  query::SeriesRequest r;
+  r.measure = get_series_measure(params);
+  r.range = get_frame_range(params);
+  r.run = resolve_run(registry, params);
+  const query::SeriesAnswer a = served([&] { return query::series_query(RegistryFrames(registry), r); });
 
-  json out = describe(measure.query);
-  if (measure.denominator) out["ratio"] = measure.ratio;
-  out["run"] = run;
+  json out = describe(r.measure.query);
+  if (r.measure.denominator) out["ratio"] = r.measure.ratio;
+  out["run"] = r.run;
   SeriesColumns columns;
-  for (std::size_t k = 0; k < values.value.size(); ++k) {
-    const std::optional<double>& v = values.value[k];
+  for (std::size_t k = 0; k < a.values.value.size(); ++k) {
+    const std::optional<double>& v = a.values.value[k];
     const bool infinite = v && std::isinf(*v);
-    columns.add(*(*frames)[values.first + k], v && std::isfinite(*v) ? json(*v) : json(nullptr), infinite);
+    columns.add(*a.frames[a.values.first + k], v && std::isfinite(*v) ? json(*v) : json(nullptr), infinite);
   }
   columns.put(out);
   return out;
