@@ -1,5 +1,4 @@
 // fnet-analyze explain: where two frames differ most, term by term of a distance's matching.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -10,11 +9,14 @@
 
 #include <boost/program_options.hpp>
 
+#include "common/codec/distance_json.hpp"
 #include "common/codec/explain_json.hpp"
 #include "common/codec/explain_table.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
 #include "server/fnet-analyze/commands.hpp"
+#include "server/query/loaded_frames.hpp"
+#include "server/query/pair_query.hpp"
 #include "server/sources/input_paths.hpp"
 #include "server/sources/source_kinds.hpp"
 
@@ -80,17 +82,22 @@ int explain_command(const std::vector<std::string>& args) {
                    contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles)))
         .frame;
   };
-  const Frame a = read(files[0], particles_a), b = read(files[1], particles_b);
-  const auto start = std::chrono::steady_clock::now();
-  nlohmann::json out = explain_json(a, b, {choice.distance(), d, kind, convention, static_cast<std::size_t>(k)});
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Frame a = read(files[0], particles_a), b = read(files[1], particles_b);
+  // Frame A is frame 0 of run "a", frame B frame 0 of run "b".
+  query::LoadedFrames frames;
+  frames.add("a", 0, std::move(a));
+  frames.add("b", 0, std::move(b));
+  const query::PairAnswer answer =
+      query::pair_query(frames, {"a", 0, "b", 0, {choice, d, kind, convention}, 0, static_cast<std::size_t>(k)});
+  nlohmann::json out = to_json(answer.distance);
+  out["explain"] = explain_terms_json(*answer.explained);
   out["metric"] = choice.name;
   if (choice.q) out["q"] = *choice.q;
   out["dim"] = d;
   out["force"] = std::string(to_string(kind));
   out["essential"] = std::string(to_string(convention));
   out["k"] = k;
-  out["seconds"] = seconds;
+  out["seconds"] = answer.seconds;
   if (format == "json")
     std::cout << out.dump() << "\n";
   else
