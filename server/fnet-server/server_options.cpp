@@ -1,0 +1,65 @@
+#include "server/fnet-server/server_options.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <thread>
+
+#include <boost/asio/ip/address.hpp>
+#include <boost/program_options.hpp>
+
+#include "common/build_info/build_info.hpp"
+
+namespace po = boost::program_options;
+
+namespace fnet::server {
+
+std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
+  ServerOptions o;
+  o.threads = std::max(1u, std::thread::hardware_concurrency());
+  po::options_description options(
+      "usage: fnet-server --data-dir DIR [--port P] [options]\n\n"
+      "Analyzes force-network frames streamed over Cyclone DDS (topics fnet_RunInfo, fnet_ForceFrame;\n"
+      "set CYCLONEDDS_URI, e.g. to deploy/cyclonedds-loopback.xml) and serves the results as\n"
+      "newline-delimited JSON-RPC 2.0 over TCP (proto/api.md). One HDF5 store per run in DIR;\n"
+      "on restart the stores are reloaded and runs still streaming continue.\n\noptions");
+  options.add_options()("help,h", "show this help")("version", "print the version and commit, then exit")(
+      "data-dir", po::value(&o.data_dir)->required(), "directory of the run stores (created if absent)")(
+      "port", po::value(&o.port)->default_value(o.port),
+      "TCP port of the JSON API (0: any free port, printed at start)")(
+      "bind", po::value(&o.bind)->default_value(o.bind), "address to listen on (loopback by default)")(
+      "threads", po::value(&o.threads)->default_value(o.threads), "analysis threads")(
+      "domain", po::value(&o.domain)->default_value(o.domain), "DDS domain id")(
+      "max-in-flight", po::value(&o.max_in_flight)->default_value(o.max_in_flight),
+      "frames held for analysis at once; beyond it DDS makes the simulation wait (about 150 KB per "
+      "2 000-particle frame, counted twice: here and in the DDS reader)")(
+      "gap-timeout", po::value(&o.gap_timeout)->default_value(o.gap_timeout),
+      "seconds to wait for a missing frame before skipping it")(
+      "max-connections", po::value(&o.max_connections)->default_value(o.max_connections), "concurrent API connections")(
+      "max-line-bytes", po::value(&o.max_line)->default_value(o.max_line), "longest request line accepted")(
+      "max-subscriptions", po::value(&o.max_subscriptions)->default_value(o.max_subscriptions),
+      "subscriptions per connection")("max-queued-bytes", po::value(&o.max_queued)->default_value(o.max_queued),
+                                      "output queued for a client that does not read, beyond which it is dropped");
+  try {
+    po::variables_map vm;
+    po::store(po::parse_command_line(argc, argv, options), vm);
+    if (vm.count("help")) {
+      std::cout << options << "\n";
+      return 0;
+    }
+    if (vm.count("version")) {
+      std::cout << fnet::version_line("fnet-server") << "\n";
+      return 0;
+    }
+    po::notify(vm);
+    if (o.threads == 0 || o.max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
+    boost::system::error_code bad_address;
+    boost::asio::ip::make_address(o.bind, bad_address);
+    if (bad_address) throw po::error("--bind '" + o.bind + "' is not an IP address");
+  } catch (const po::error& e) {
+    std::cerr << "fnet-server: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  return o;
+}
+
+}  // namespace fnet::server

@@ -1,0 +1,24 @@
+// fnet-server's command line: what it serves, where, and the limits it serves within.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <variant>
+
+namespace fnet::server {
+
+struct ServerOptions {
+  std::string data_dir, bind = "127.0.0.1";
+  unsigned short port = 7707;
+  unsigned threads = 1;  // analysis threads, >= 1; the default is the hardware's
+  int domain = 0;        // DDS domain id
+  std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
+              max_queued = 16 << 20;
+  double gap_timeout = 30;  // seconds
+};
+
+// The options, or the exit code when the program ends here: 0 after printing --help or
+// --version, 2 after a usage error (its message on stderr).
+std::variant<ServerOptions, int> parse_server_options(int argc, char** argv);
+
+}  // namespace fnet::server
