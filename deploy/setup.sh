@@ -7,7 +7,7 @@ packages=(
   # toolchain
   build-essential cmake pkg-config git ca-certificates
   # libraries of the design
-  libeigen3-dev libhdf5-dev libboost-dev libboost-program-options-dev
+  libeigen3-dev libhdf5-dev libboost-dev libboost-program-options-dev zlib1g-dev
   nlohmann-json3-dev cyclonedds-dev cyclonedds-tools
   # tests
   libgtest-dev libgmock-dev googletest clang-format

@@ -16,11 +16,12 @@ namespace fnet::sources {
 SourceKind frame_files_kind();  // --contacts C.csv [--particles P.csv]: one frame (frame_files_source.cpp)
 SourceKind csv_run_kind();      // --csv-dir DIR: the folder fnet-simd --export-csv writes (csv_run_source.cpp)
 SourceKind run_file_kind();     // --run-file F: the HDF5 run file (run_file_source.cpp, in fnet_sources_hdf5)
+SourceKind lammps_kind();       // --lammps-atoms P --lammps-pairs P: LAMMPS dumps (lammps_source.cpp)
 
 // One frame: diagram.
 inline std::vector<SourceKind> frame_kinds() { return {frame_files_kind()}; }
 // A whole run: store and publish, in fnet-analyze-io (the run file's kind needs fnet_sources_hdf5).
-inline std::vector<SourceKind> run_kinds() { return {run_file_kind(), csv_run_kind()}; }
+inline std::vector<SourceKind> run_kinds() { return {run_file_kind(), csv_run_kind(), lammps_kind()}; }
 
 // The frame-files kind for a command whose arguments name the files themselves (explain's A.csv
 // B.csv): the frame is labelled by the contacts file; without particles its particle count is the

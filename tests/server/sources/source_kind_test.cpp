@@ -85,7 +85,9 @@ std::string usage_error(const std::vector<std::string>& args, bool run = false) 
 }
 
 TEST(SourceKind, UsageLinesListEachKindsFlags) {
-  EXPECT_EQ(run_usage(run_kinds()), "(--run-file F | --csv-dir DIR --run-id R)");
+  EXPECT_EQ(run_usage(run_kinds()),
+            "(--run-file F | --csv-dir DIR --run-id R | --lammps-atoms PATTERN --lammps-pairs PATTERN "
+            "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] --run-id R)");
   EXPECT_EQ(source_usage(frame_kinds()), "--contacts C.csv [--particles P.csv]");
   EXPECT_EQ(run_usage(kKinds), "(--recording F [--follow] | --atoms PATTERN --pairs PATTERN [--follow] --run-id R)");
 }
@@ -133,9 +135,11 @@ TEST(SourceKind, TheRunIdGivenNamesAnInputThatAnnouncesNone) {
 TEST(SourceKind, RunIdAndEnsembleHelpNameTheKindsThatAnnounce) {
   po::options_description options;
   add_run_options(run_kinds(), options);
-  EXPECT_EQ(options.find("run-id", false).description(), "run id (required with --csv-dir; overrides the run file's)");
+  EXPECT_EQ(options.find("run-id", false).description(),
+            "run id (required with --csv-dir or --lammps-atoms; overrides the run file's)");
   EXPECT_EQ(options.find("ensemble", false).description(),
-            "the ensemble of realizations the run belongs to (overrides the run file's; a CSV folder has none)");
+            "the ensemble of realizations the run belongs to (overrides the run file's; a CSV folder or a LAMMPS run "
+            "has none)");
 }
 
 }  // namespace
