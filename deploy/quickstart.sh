@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/setup.sh
-bash deploy/build.sh -DFNET_BUILD_TESTS=OFF
+bash deploy/build.sh -DFNET_BUILD_TESTS=OFF -DCMAKE_UNITY_BUILD=OFF
 bash deploy/demo.sh

@@ -11,13 +11,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/distance/infinity.hpp"
 #include "common/distance/linf_kdtree.hpp"
 
 namespace fnet {
 
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double diagonal_distance(PlanePoint p) { return std::fabs(p.x - p.y) / 2; }
 

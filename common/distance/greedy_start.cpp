@@ -4,10 +4,11 @@
 #include <limits>
 #include <vector>
 
+#include "common/distance/infinity.hpp"
+
 namespace fnet {
 
 void greedy_start(FlowState& flow, HubArcs& hubs, PairOracle& oracle, std::size_t nearest) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   constexpr std::int64_t kDiagonal = FlowState::kDiagonal, kNone = FlowState::kNone;
   // Row reduction: with pi(b) = pi(HA) = pi(HB) = 0, pi(a_i) = -(its cheapest way out) keeps every
   // reduced cost >= 0, and a_i's cheapest arc is tight: take it when its head is still free (the

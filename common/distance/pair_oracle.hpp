@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/distance/flow_state.hpp"
+#include "common/distance/infinity.hpp"
 #include "common/distance/linf_kdtree.hpp"
 
 namespace fnet {
@@ -55,7 +56,6 @@ class PairOracle {
   void update_maxima(std::uint32_t j);
 
  private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
   static constexpr double kHuge = 1e300;
   struct BoxMax {  // over the box's points b: max pi(b), max pi(b) -+ x_b, max pi(b) -+ y_b
     double pi = -kHuge, minus_x = -kHuge, plus_x = -kHuge, minus_y = -kHuge, plus_y = -kHuge;

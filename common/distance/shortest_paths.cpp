@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <limits>
 
+#include "common/distance/infinity.hpp"
+
 namespace fnet {
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
+namespace {}  // namespace
 
 ShortestPaths::ShortestPaths(FlowState& flow, HubArcs& hubs, PairOracle& oracle, const CandidateArcs& candidates)
     : flow_(flow),

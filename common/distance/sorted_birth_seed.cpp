@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include "common/distance/infinity.hpp"
+
 namespace fnet {
 
 namespace {
@@ -82,7 +84,6 @@ LineAlignment sorted_birth_alignment(std::span<const PlanePoint> a, std::span<co
   const auto lo = [&](std::size_t i) { return std::max<std::int64_t>(0, center(i) - w); };
   const auto hi = [&](std::size_t i) { return std::min<std::int64_t>(static_cast<std::int64_t>(m), center(i) + w); };
   const std::size_t width = static_cast<std::size_t>(2 * w + 1);
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   std::vector<double> prev(m + 1, kInf), cur(m + 1, kInf);
   std::vector<std::uint8_t> step((n + 1) * width, kOutside);
   const auto at = [&](std::size_t i, std::int64_t j) { return i * width + static_cast<std::size_t>(j - lo(i)); };

@@ -10,12 +10,11 @@
 
 #include "common/distance/bottleneck.hpp"
 #include "common/distance/diagonal_flow.hpp"
+#include "common/distance/infinity.hpp"
 
 namespace fnet {
 
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // q = 1 and 2 solve in coordinates rescaled by a power of two at or above the largest half
 // persistence: the arcs that can matter then cost at most 2, nothing overflows, and the sum of an

@@ -17,7 +17,7 @@ using h5::check;
 constexpr std::size_t kInfoBytes = 16384;              // one run announcement, as JSON
 constexpr std::size_t kReasonBytes = 1024;             // one rejection reason
 constexpr std::size_t kCounts = 6;                     // vertices, edges, triangles of normal, then tangential
-constexpr std::size_t kOffsets = 5;                    // start of the 4 diagrams in /points, and the end
+constexpr std::size_t kPointOffsets = 5;               // start of the 4 diagrams in /points, and the end
 constexpr std::size_t kSeries = kStoredSeries.size();  // columns of `distances`
 constexpr std::size_t kNetworkOffsets = 4;             // the frame's rows [begin, end) in particles, in the contacts
 
@@ -135,7 +135,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     h5::create_extendible(f, "previous", H5T_NATIVE_INT64, 0, 256);
     h5::create_extendible(f, "distances", H5T_NATIVE_DOUBLE, kSeries, 256);
     h5::create_extendible(f, "counts", H5T_NATIVE_UINT64, kCounts, 256);
-    h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kOffsets, 256);
+    h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kPointOffsets, 256);
     h5::create_extendible(f, "points", H5T_NATIVE_DOUBLE, 2, 8192);
     h5::create_extendible(f, "rejected_frame", H5T_NATIVE_UINT32, 0, 64);
     h5::create_extendible(f, "rejected_reason", fixed_string(kReasonBytes).get(), 0, 64);
@@ -209,7 +209,7 @@ void StoreWriter::write_info(const RunInfo& info, StoreTime at) {
 void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   const std::array<const Diagram*, 4> diagrams{&f.diagrams.normal.pd0, &f.diagrams.normal.pd1,
                                                &f.diagrams.tangential.pd0, &f.diagrams.tangential.pd1};
-  std::array<std::uint64_t, kOffsets> offsets{};
+  std::array<std::uint64_t, kPointOffsets> offsets{};
   offsets[0] = h5::row_count(file_.get(), "points", "store");
   std::vector<double> points;
   for (std::size_t d = 0; d < 4; ++d) {
@@ -253,7 +253,7 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   h5::append_rows(set("previous"), H5T_NATIVE_INT64, &previous, 1, 0);
   h5::append_rows(set("distances"), H5T_NATIVE_DOUBLE, f.distances.value.data(), 1, kSeries);
   h5::append_rows(set("counts"), H5T_NATIVE_UINT64, counts.data(), 1, kCounts);
-  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
+  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kPointOffsets);
   h5::append_rows(set("committed_at"), H5T_NATIVE_DOUBLE, &at, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &f.header.index, 1, 0);
@@ -352,7 +352,7 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto column_of = series_columns(root.get(), file);
   const auto distances = h5::read_doubles(g, "distances", kSeries, file);
   const auto counts = h5::read_uint64s(g, "counts", kCounts, file);
-  const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
+  const auto offsets = h5::read_uint64s(g, "offsets", kPointOffsets, file);
   const auto points = h5::read_doubles(g, "points", 2, file);
   std::vector<std::uint32_t> has_network;
   std::vector<std::uint64_t> network_offsets;
@@ -367,12 +367,12 @@ StoredRun read_store(const std::filesystem::path& path) {
   // Committed frames: those every column covers (a killed writer may leave some columns longer).
   std::size_t n = frame.size();
   for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(),
-                                distances.size() / kSeries, counts.size() / kCounts, offsets.size() / kOffsets})
+                                distances.size() / kSeries, counts.size() / kCounts, offsets.size() / kPointOffsets})
     n = std::min(n, len);
   if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint64_t* off = &offsets[k * kOffsets];
-    if (off[kOffsets - 1] > points.size() / 2) break;  // its points never reached the file
+    const std::uint64_t* off = &offsets[k * kPointOffsets];
+    if (off[kPointOffsets - 1] > points.size() / 2) break;  // its points never reached the file
     const bool stored = !v1 && has_network[k] != 0;
     if (stored && (network_offsets[k * kNetworkOffsets + 1] > particle_rows ||
                    network_offsets[k * kNetworkOffsets + 3] > contact_rows))

@@ -17,7 +17,7 @@ constexpr const char* kFrameColumns[] = {"step", "time", "rho", "z", "particle_c
 // Rows of many frames, located by a frame's "offsets".
 constexpr const char* kBulk[] = {"particles", "contact_pairs", "contact_forces", "wall_contact_particles",
                                  "wall_contact_forces"};
-constexpr std::size_t kOffsets = 6;  // begin and end rows in particles, contacts, wall contacts
+constexpr std::size_t kFrameOffsets = 6;  // begin and end rows in particles, contacts, wall contacts
 
 }  // namespace
 
@@ -55,7 +55,7 @@ void RunFileWriter::create(const std::filesystem::path& path, const RunInfo& inf
   h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
   for (const char* name : {"time", "rho", "z"}) h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
   h5::create_extendible(f, "particle_count", H5T_NATIVE_UINT64, 0, 256);
-  h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kOffsets, 256);
+  h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kFrameOffsets, 256);
   h5::create_extendible(f, "particles", H5T_NATIVE_DOUBLE, 3, 4096);
   h5::create_extendible(f, "contact_pairs", H5T_NATIVE_UINT32, 2, 4096);
   h5::create_extendible(f, "contact_forces", H5T_NATIVE_DOUBLE, 2, 4096);
@@ -103,12 +103,12 @@ void RunFileWriter::append(const RunFrame& rf) {
   }
   const hid_t file = file_.get();
   const auto rows = [&](const char* name) { return static_cast<std::uint64_t>(h5::row_count(file, name, "run file")); };
-  const std::array<std::uint64_t, kOffsets> offsets{rows("particles"),
-                                                    rows("particles") + f.particles.size(),
-                                                    rows("contact_pairs"),
-                                                    rows("contact_pairs") + f.contacts.size(),
-                                                    rows("wall_contact_particles"),
-                                                    rows("wall_contact_particles") + rf.wall_contacts.size()};
+  const std::array<std::uint64_t, kFrameOffsets> offsets{rows("particles"),
+                                                         rows("particles") + f.particles.size(),
+                                                         rows("contact_pairs"),
+                                                         rows("contact_pairs") + f.contacts.size(),
+                                                         rows("wall_contact_particles"),
+                                                         rows("wall_contact_particles") + rf.wall_contacts.size()};
   // The bulk first, the frame's own row next, its index last: a reader trusts a frame only once
   // "frame" covers it (a killed writer may leave longer datasets behind).
   h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.data(), f.particles.size(), 3);
@@ -122,7 +122,7 @@ void RunFileWriter::append(const RunFrame& rf) {
   h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &rf.header.rho, 1, 0);
   h5::append_rows(set("z"), H5T_NATIVE_DOUBLE, &rf.header.z, 1, 0);
   h5::append_rows(set("particle_count"), H5T_NATIVE_UINT64, &particle_count, 1, 0);
-  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kOffsets);
+  h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kFrameOffsets);
   check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &rf.header.index, 1, 0);
   check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
@@ -160,7 +160,7 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   const auto rho = h5::read_doubles(g, "rho", 0, file);
   const auto z = h5::read_doubles(g, "z", 0, file);
   const auto particle_count = h5::read_uint64s(g, "particle_count", 0, file);
-  const auto offsets = h5::read_uint64s(g, "offsets", kOffsets, file);
+  const auto offsets = h5::read_uint64s(g, "offsets", kFrameOffsets, file);
   const auto particles = h5::read_doubles(g, "particles", 3, file);
   const auto pairs = h5::read_uint32s(g, "contact_pairs", 2, file);
   const auto forces = h5::read_doubles(g, "contact_forces", 2, file);
@@ -169,14 +169,15 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   // Committed frames: those every column covers.
   std::size_t n = frame.size();
   for (const std::size_t len :
-       {step.size(), time.size(), rho.size(), z.size(), particle_count.size(), offsets.size() / kOffsets})
+       {step.size(), time.size(), rho.size(), z.size(), particle_count.size(), offsets.size() / kFrameOffsets})
     n = std::min(n, len);
-  const std::array<std::size_t, kOffsets / 2> available{particles.size() / 3, std::min(pairs.size(), forces.size()) / 2,
-                                                        std::min(wall_particles.size(), wall_forces.size() / 2)};
+  const std::array<std::size_t, kFrameOffsets / 2> available{particles.size() / 3,
+                                                             std::min(pairs.size(), forces.size()) / 2,
+                                                             std::min(wall_particles.size(), wall_forces.size() / 2)};
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint64_t* o = &offsets[k * kOffsets];
+    const std::uint64_t* o = &offsets[k * kFrameOffsets];
     const std::string where = file + ": frame " + std::to_string(frame[k]);
-    for (std::size_t b = 0; b < kOffsets / 2; ++b)
+    for (std::size_t b = 0; b < kFrameOffsets / 2; ++b)
       if (o[2 * b] > o[2 * b + 1] || o[2 * b + 1] > available[b]) throw h5::Error(where + ": offsets out of range");
     RunFrame rf;
     rf.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};

@@ -35,7 +35,7 @@ class CsvRun final : public FrameSource {
   std::size_t next_ = 0;
 };
 
-std::unique_ptr<FrameSource> open(const SourceArguments& given) {
+std::unique_ptr<FrameSource> open_csv_run(const SourceArguments& given) {
   return std::make_unique<CsvRun>(given.at("csv-dir"));
 }
 
@@ -48,7 +48,7 @@ SourceKind csv_run_kind() {
             "frame_NNNN_contacts.csv [+ frame_NNNN_particles.csv], as fnet-simd --export-csv writes it",
             SourceFlag::Path::directory}},
           false,
-          open};
+          open_csv_run};
 }
 
 }  // namespace fnet::sources

@@ -25,7 +25,7 @@ class FrameFiles final : public FrameSource {
   std::optional<RunFrame> frame_;  // until taken
 };
 
-std::unique_ptr<FrameSource> open(const SourceArguments& given) {
+std::unique_ptr<FrameSource> open_frame_files_kind(const SourceArguments& given) {
   const auto particles = given.find("particles");
   return open_frame_files(given.at("contacts"), particles == given.end()
                                                     ? std::nullopt
@@ -50,7 +50,7 @@ SourceKind frame_files_kind() {
             "contact index + 1)",
             SourceFlag::Path::file, false}},
           false,
-          open};
+          open_frame_files_kind};
 }
 
 }  // namespace fnet::sources

@@ -129,7 +129,7 @@ class LammpsRun final : public FrameSource {
   std::size_t next_ = 0;
 };
 
-std::unique_ptr<FrameSource> open(const SourceArguments& given) { return std::make_unique<LammpsRun>(given); }
+std::unique_ptr<FrameSource> open_lammps(const SourceArguments& given) { return std::make_unique<LammpsRun>(given); }
 
 }  // namespace
 
@@ -150,7 +150,7 @@ SourceKind lammps_kind() {
             "fail when a grain's net contact force exceeds TOL x the mean contact force (needs force vectors)",
             SourceFlag::Path::none, false}},
           false,
-          open};
+          open_lammps};
 }
 
 }  // namespace fnet::sources

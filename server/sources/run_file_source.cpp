@@ -23,15 +23,17 @@ class RunFile final : public FrameSource {
   std::size_t next_ = 0;
 };
 
-std::unique_ptr<FrameSource> open(const SourceArguments& given) {
+std::unique_ptr<FrameSource> open_run_file(const SourceArguments& given) {
   return std::make_unique<RunFile>(given.at("run-file"));
 }
 
 }  // namespace
 
 SourceKind run_file_kind() {
-  return {
-      "run file", {{"run-file", "F", "HDF5 run file written by fnet-simd --out", SourceFlag::Path::file}}, true, open};
+  return {"run file",
+          {{"run-file", "F", "HDF5 run file written by fnet-simd --out", SourceFlag::Path::file}},
+          true,
+          open_run_file};
 }
 
 }  // namespace fnet::sources

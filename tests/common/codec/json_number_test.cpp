@@ -23,7 +23,7 @@ std::string written(double v) {
   return {buf, write_json_number(buf, v)};
 }
 
-std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+std::uint64_t number_bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 
 // Edge cases, then random bit patterns (every exponent alike: subnormals, huge and tiny), then
 // random values of everyday size, as a diagram holds them.
@@ -71,10 +71,10 @@ TEST(JsonNumber, EveryDoubleRoundTripsBitForBit) {
     const auto ours = read_json_number(text);
     ASSERT_TRUE(ours) << text;
     EXPECT_EQ(ours->length, text.size()) << text;
-    EXPECT_EQ(bits(ours->value), bits(v)) << text;
+    EXPECT_EQ(number_bits(ours->value), number_bits(v)) << text;
     const nlohmann::json theirs = nlohmann::json::parse(text);
     ASSERT_TRUE(theirs.is_number_float()) << text << " would read back as an integer";
-    EXPECT_EQ(bits(theirs.get<double>()), bits(v)) << text;
+    EXPECT_EQ(number_bits(theirs.get<double>()), number_bits(v)) << text;
   }
 }
 
@@ -96,7 +96,7 @@ TEST(JsonNumber, ReadsEveryTokenAsNlohmannDoes) {
     const auto ours = read_json_number(text);
     ASSERT_TRUE(ours) << text;
     EXPECT_EQ(ours->length, text.size()) << text;
-    EXPECT_EQ(bits(ours->value), bits(nlohmann::json::parse(text).get<double>())) << text;
+    EXPECT_EQ(number_bits(ours->value), number_bits(nlohmann::json::parse(text).get<double>())) << text;
   }
 }
 

@@ -74,7 +74,7 @@ struct Pt {
   double x, y;
 };
 
-double linf(Pt a, Pt b) { return std::max(std::fabs(a.x - b.x), std::fabs(a.y - b.y)); }
+double linf_of(Pt a, Pt b) { return std::max(std::fabs(a.x - b.x), std::fabs(a.y - b.y)); }
 
 // The q-norm of a list of costs (q == 0: the largest), in long double and held as top^q * scaled
 // with top the largest cost so far: no ratio to top exceeds 1, so no power overflows for any q,
@@ -137,7 +137,7 @@ double brute_force_distance(const Diagram& a, const Diagram& b, double q, Essent
     for (std::size_t j = 0; j < pb.size(); ++j) {
       if (used[j]) continue;
       used[j] = 1;
-      go(i + 1, acc.with(linf(pa[i], pb[j])));
+      go(i + 1, acc.with(linf_of(pa[i], pb[j])));
       used[j] = 0;
     }
   };

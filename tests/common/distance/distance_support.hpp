@@ -2,6 +2,8 @@
 // definitions alone, the LAMMPS frames' diagrams, and the Python assignment oracle.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -12,6 +14,13 @@
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::test {
+
+// The L-infinity distance between two points of the plane, from the definition.
+inline double linf(PlanePoint p, PlanePoint q) { return std::max(std::fabs(p.x - q.x), std::fabs(p.y - q.y)); }
+// A diagram's points in the plane under the floor convention (never-dying classes die at 0).
+inline std::vector<PlanePoint> plane(const Diagram& d) {
+  return apply_convention(d, EssentialConvention::floor).points;
+}
 
 inline constexpr EssentialConvention kAllConventions[] = {EssentialConvention::floor, EssentialConvention::sentinel,
                                                           EssentialConvention::separate};

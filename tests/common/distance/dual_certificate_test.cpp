@@ -20,8 +20,6 @@
 namespace fnet::test {
 namespace {
 
-std::vector<PlanePoint> plane(const Diagram& d) { return apply_convention(d, EssentialConvention::floor).points; }
-
 // The certificate of the solver run on the points as given, and the public distance (which rescales
 // them by a power of two first, exactly) must give the same value.
 void expect_certified(const Diagram& da, const Diagram& db, double q, const std::string& what) {

@@ -7,10 +7,11 @@
 #include <limits>
 #include <numeric>
 
+#include "tests/common/distance/distance_support.hpp"
+
 namespace fnet::test {
 namespace {
 
-double linf(PlanePoint p, PlanePoint q) { return std::max(std::fabs(p.x - q.x), std::fabs(p.y - q.y)); }
 double diagonal(PlanePoint p) { return std::fabs(p.x - p.y) / 2; }
 
 // Calls f(i, j, d) for every pair a_i, b_j at distance d <= r.

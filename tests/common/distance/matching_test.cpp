@@ -24,8 +24,6 @@ PlanePoint seen(const PersistencePoint& p, EssentialConvention c) {
   return {p.birth, p.death};
 }
 
-double linf(PlanePoint p, PlanePoint q) { return std::max(std::fabs(p.x - q.x), std::fabs(p.y - q.y)); }
-
 // Every point of a and of b exactly once; each term's length recomputed from the diagrams.
 ::testing::AssertionResult valid(const Diagram& a, const Diagram& b, const DiagramMatching& m, EssentialConvention c) {
   std::vector<int> seen_a(a.size(), 0), seen_b(b.size(), 0);

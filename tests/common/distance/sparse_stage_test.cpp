@@ -20,8 +20,6 @@ namespace {
 
 const std::uint32_t kBand = DiagonalFlowParams{}.band;  // the solver's band
 
-std::vector<PlanePoint> plane(const Diagram& d) { return apply_convention(d, EssentialConvention::floor).points; }
-
 // Points on the line death = 0 only, births spread over [0, top].
 std::vector<PlanePoint> line_points(std::mt19937_64& rng, std::size_t n, double top) {
   std::uniform_real_distribution<double> u(0, top);

@@ -14,7 +14,7 @@
 namespace fnet::testing {
 namespace {
 
-constexpr ForceKind kKinds[] = {ForceKind::normal, ForceKind::tangential};
+constexpr ForceKind kInvariantKinds[] = {ForceKind::normal, ForceKind::tangential};
 
 // A frame from one of the graph families, with a random force style (ties, zeros, negatives and,
 // if allowed, near-ties a few ulps apart).
@@ -52,7 +52,7 @@ void expect_identical_after(std::uint64_t seed, Change change) {
   for (int k = 0; k < 1500; ++k) {
     const Frame frame = random_frame(rng);
     const Frame changed = change(frame, rng);
-    for (ForceKind kind : kKinds) {
+    for (ForceKind kind : kInvariantKinds) {
       const FrameDiagrams a = fast_path(frame, kind), b = fast_path(changed, kind);
       ASSERT_EQ(a.pd0, b.pd0) << to_string(kind) << ", case " << k << "\n"
                               << describe(frame) << "changed:\n"
@@ -95,7 +95,7 @@ TEST(PersistenceInvariance, LargeFramesUnderAllRewritings) {
   for (int k = 0; k < 30; ++k) {
     const Frame frame = frame_from_graph(triangular_lattice(15, 15, 0.9, rng), random_style(rng), 3, rng);
     const Frame changed = shuffled_rows(reversed_pairs(relabelled(frame, rng)), rng);
-    for (ForceKind kind : kKinds) {
+    for (ForceKind kind : kInvariantKinds) {
       const FrameDiagrams a = fast_path(frame, kind), b = fast_path(changed, kind);
       ASSERT_EQ(a.pd0, b.pd0) << to_string(kind) << ", case " << k;
       ASSERT_EQ(a.pd1, b.pd1) << to_string(kind) << ", case " << k;
@@ -110,7 +110,7 @@ TEST(PersistenceInvariance, ScalingAllForcesChangesNothingBeyondRounding) {
     std::mt19937_64 rng(206);
     for (int k = 0; k < 1500; ++k) {
       const Frame frame = random_frame(rng, false);
-      for (ForceKind kind : kKinds) {
+      for (ForceKind kind : kInvariantKinds) {
         const FrameDiagrams a = fast_path(frame, kind), b = fast_path(scaled(frame, factor), kind);
         ASSERT_TRUE(nearly_equal(a.pd0, b.pd0, 1e-12)) << "factor " << factor << ", " << to_string(kind) << "\n"
                                                        << describe(frame);
