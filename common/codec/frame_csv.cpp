@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "common/codec/file_text.hpp"
+#include "common/topology/contact_force.hpp"
 
 namespace fnet {
 namespace {
@@ -127,13 +128,18 @@ const char* read_plain_row(std::string_view text, const std::vector<std::size_t>
   return p == end || *p == '\n' ? p : nullptr;
 }
 
-// Reads a CSV whose header must contain `names`; calls reserve(n) with an upper bound on the number
-// of rows, then row(values, line) with the values of those columns, of types T..., in that order.
-// One pass over the file held whole; a row costs no allocation.
+template <std::size_t K>
+using ColumnNames = std::array<std::string_view, K>;
+
+// Reads a CSV whose header must contain the columns of one of `forms` (the first it has all of;
+// the error names the first form's missing column); calls reserve(n, form) with an upper bound on
+// the number of rows and the form found, then row(values, line) with the values of those columns, of types T..., in
+// that order. Returns which form the header had. One pass over the file held whole; a row costs no allocation.
 template <class... T, class Reserve, class Row>
-void read_table(const std::filesystem::path& path, const std::array<std::string_view, sizeof...(T)>& names,
-                Reserve reserve, Row row) {
+std::size_t read_table(const std::filesystem::path& path, const std::vector<ColumnNames<sizeof...(T)>>& forms,
+                       Reserve reserve, Row row) {
   constexpr std::size_t K = sizeof...(T);
+  std::size_t form = 0;
   const std::optional<FileText> file = FileText::read(path);
   if (!file) throw CsvError(path.string() + ": cannot open file");
   const std::string_view text = file->view();
@@ -147,17 +153,29 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
   while (lines.next(line)) {
     if (is_blank(line)) continue;
     const auto header = split(line);
+    const auto has = [&](std::string_view name) {
+      return std::find(header.begin(), header.end(), name) != header.end();
+    };
+    form = static_cast<std::size_t>(
+        std::find_if(forms.begin(), forms.end(),
+                     [&](const ColumnNames<K>& names) { return std::all_of(names.begin(), names.end(), has); }) -
+        forms.begin());
+    if (form == forms.size()) {
+      std::string expected;
+      for (const ColumnNames<K>& names : forms) {
+        if (!expected.empty()) expected += " or ";
+        for (std::size_t k = 0; k < K; ++k) {
+          if (k) expected += ',';
+          expected.append(names[k]);
+        }
+      }
+      const ColumnNames<K>& first = forms.front();
+      const std::string_view missing = *std::find_if(first.begin(), first.end(), [&](auto n) { return !has(n); });
+      fail("header lacks column '" + std::string(missing) + "' (expected " + expected + ")");
+    }
     slot.assign(header.size(), kUnused);
     for (std::size_t k = 0; k < K; ++k) {
-      const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), names[k]) - header.begin());
-      if (c == header.size()) {
-        std::string expected;
-        for (auto n : names) {
-          if (!expected.empty()) expected += ',';
-          expected.append(n);
-        }
-        fail("header lacks column '" + std::string(names[k]) + "' (expected " + expected + ")");
-      }
+      const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), forms[form][k]) - header.begin());
       if (slot[c] == kUnused) slot[c] = k;
     }
     break;
@@ -167,7 +185,7 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
   // Vectors sized once, from the length of the first row: growing them would copy at every
   // doubling, and counting the lines first would cost a pass over the file.
   const std::string_view rest = lines.rest();
-  reserve(rest.size() / (std::min(rest.find('\n'), rest.size()) + 1) + 1);
+  reserve(rest.size() / (std::min(rest.find('\n'), rest.size()) + 1) + 1, form);
   std::tuple<T...> values;
   std::array<std::string_view, K> fields;
   while (true) {
@@ -190,26 +208,65 @@ void read_table(const std::filesystem::path& path, const std::array<std::string_
         fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
       }
       [&]<std::size_t... I>(std::index_sequence<I...>) {
-        ((std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], names[I], fail)), ...);
+        ((std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], forms[form][I], fail)),
+         ...);
       }
       (std::index_sequence_for<T...>{});
     }
     row(values, lines.number());
   }
+  return form;
 }
 
 }  // namespace
 
-std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
-  std::vector<Contact> out;
-  static constexpr std::array<std::string_view, 4> names{"i", "j", "fn", "ft"};
-  read_table<std::int64_t, std::int64_t, double, double>(
-      path, names, [&](std::size_t n) { out.reserve(n); },
-      [&](const auto& v, std::size_t) {
-        out.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+ContactsCsv read_contacts_table(const std::filesystem::path& path) {
+  ContactsCsv out;
+  bool vectors = false;  // then each row's line is kept, for the messages of contacts_from_vectors
+  static const std::vector<ColumnNames<4>> forms{{"i", "j", "fn", "ft"}, {"i", "j", "fx", "fy"}};
+  const std::size_t form = read_table<std::int64_t, std::int64_t, double, double>(
+      path, forms,
+      [&](std::size_t n, std::size_t chosen) {
+        out.rows.reserve(n);
+        vectors = chosen == 1;
+        if (vectors) out.lines.reserve(n);
+      },
+      [&](const auto& v, std::size_t line) {
+        out.rows.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+        if (vectors) out.lines.push_back(line);
       });
+  out.forces = form == 0 ? ContactForces::magnitudes : ContactForces::vectors;
   return out;
 }
+
+std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
+  ContactsCsv table = read_contacts_table(path);
+  if (table.forces == ContactForces::vectors)
+    throw CsvError(path.string() + ": contact forces given as vectors (fx,fy) need the particles' positions");
+  return std::move(table.rows);
+}
+
+namespace {
+
+std::vector<Contact> contacts_from_vectors(const std::filesystem::path& path, const ContactsCsv& table,
+                                           const std::vector<Particle>& particles) {
+  std::vector<Contact> out;
+  out.reserve(table.rows.size());
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    const Contact& row = table.rows[k];
+    for (const std::int64_t g : {row.i, row.j})
+      if (g < 0 || static_cast<std::size_t>(g) >= particles.size())
+        throw CsvError(path.string() + ":" + std::to_string(table.lines[k]) + ": particle index " + std::to_string(g) +
+                       " is not in the particles CSV (" + std::to_string(particles.size()) + " particles)");
+    const Particle& a = particles[static_cast<std::size_t>(row.i)];
+    const Particle& b = particles[static_cast<std::size_t>(row.j)];
+    const ContactForceParts parts = split_contact_force({a.x - b.x, a.y - b.y, 0.0}, {row.fn, row.ft, 0.0});
+    out.push_back({row.i, row.j, parts.fn, parts.ft});
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   // Rows land in the table in file order; their ids are kept only once one is out of order (the
@@ -218,10 +275,10 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
   std::vector<std::int64_t> ids;
   std::vector<std::size_t> lines;
   bool in_order = true;
-  static constexpr std::array<std::string_view, 4> names{"id", "x", "y", "r"};
+  static const std::vector<ColumnNames<4>> forms{{"id", "x", "y", "r"}};
   read_table<std::int64_t, double, double, double>(
-      path, names,
-      [&](std::size_t n) {
+      path, forms,
+      [&](std::size_t n, std::size_t) {
         table.reserve(n);
         lines.reserve(n);
       },
@@ -258,13 +315,18 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
 Frame read_frame_csv(const std::filesystem::path& contacts, const std::optional<std::filesystem::path>& particles) {
   Frame frame;
   frame.label = contacts.string();
-  frame.contacts = read_contacts_csv(contacts);
+  ContactsCsv table = read_contacts_table(contacts);
   if (particles) {
     frame.particles = read_particles_csv(*particles);
     frame.particle_count = frame.particles.size();
-  } else {
-    frame.particle_count = implied_particle_count(frame.contacts);
+  } else if (table.forces == ContactForces::vectors) {
+    throw CsvError(contacts.string() +
+                   ": contact forces given as vectors (fx,fy) need the particles CSV, whose positions give the line "
+                   "of centres");
   }
+  frame.contacts = table.forces == ContactForces::vectors ? contacts_from_vectors(contacts, table, frame.particles)
+                                                          : std::move(table.rows);
+  if (!particles) frame.particle_count = implied_particle_count(frame.contacts);
   return frame;
 }
 

@@ -1,5 +1,8 @@
-// Reading frames from the CSV files fnet exports and LAMMPS-side tools write:
-//   contacts:  header i,j,fn,ft  (0-based particle indices)
+// Reading frames from the CSV files fnet exports and experiments and other codes write
+// (proto/frames.md):
+//   contacts:  header i,j,fn,ft  (0-based particle indices; signed normal force, tangential force)
+//          or  header i,j,fx,fy  (the force on grain i from grain j as a vector, when the header has
+//                                 no fn,ft: split along the line of centres, which needs particles)
 //   particles: header id,x,y,r   (ids 0..n-1, each exactly once, any row order)
 // Columns may come in any order; extra columns are ignored. Errors name the file and line.
 #pragma once
@@ -18,11 +21,26 @@ class CsvError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How a contacts CSV gives the forces: fn,ft, or fx,fy.
+enum class ContactForces { magnitudes, vectors };
+
+// A contacts CSV's rows as written: with vectors, each row's fn and ft hold its fx and fy, and
+// `lines` the line of each row (for messages).
+struct ContactsCsv {
+  ContactForces forces = ContactForces::magnitudes;
+  std::vector<Contact> rows;
+  std::vector<std::size_t> lines;
+};
+ContactsCsv read_contacts_table(const std::filesystem::path& path);
+
+// The contacts of a CSV in the fn,ft form; one in the fx,fy form throws (it needs the positions).
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path);
 std::vector<Particle> read_particles_csv(const std::filesystem::path& path);
 
 // A frame labelled by the contacts file. Without particles the particle count is the largest
-// index + 1. The frame is not validated here.
+// index + 1. Forces given as vectors are split along the line of centres (split_contact_force,
+// x_i - x_j from the particles; without particles, or with an index not among them, it throws). The
+// frame is not validated here.
 Frame read_frame_csv(const std::filesystem::path& contacts, const std::optional<std::filesystem::path>& particles);
 
 }  // namespace fnet

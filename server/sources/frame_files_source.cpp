@@ -43,7 +43,8 @@ SourceKind frame_files_kind() {
   return {"frame's CSV files",
           {{"contacts", "C.csv",
             "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential force "
-            "(magnitudes are used)",
+            "(magnitudes are used); or i,j,fx,fy: the force on grain i as a vector, split along the line of centres "
+            "(needs --particles; proto/frames.md)",
             SourceFlag::Path::file},
            {"particles", "P.csv",
             "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: largest "

@@ -10,6 +10,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "common/topology/contact_force.hpp"
+
 namespace fnet::sources {
 
 namespace {
@@ -241,8 +243,9 @@ LammpsFrame lammps_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, c
     std::array<double, 2> force{};  // on i
     if (cf[0]) {
       const auto f = vector_of(cf, row);
-      fn = f[0] * n[0] + f[1] * n[1];
-      ft = std::hypot(f[0] - fn * n[0], f[1] - fn * n[1], f[2]);
+      const ContactForceParts parts = split_contact_force({d[0], d[1], 0.0}, f);
+      fn = parts.fn;
+      ft = parts.ft;
       force = {f[0], f[1]};
     } else {
       std::array<double, 2> normal{};

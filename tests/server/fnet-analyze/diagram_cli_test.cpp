@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/codec/diagram_gudhi.hpp"
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/frame_csv.hpp"
 #include "common/topology/force_network.hpp"
@@ -107,6 +108,47 @@ TEST_F(DiagramCli, WithoutParticlesTheVertexCountIsTheLargestIndexPlusOne) {
   ASSERT_EQ(without.exit_code, 0) << without.err;
   EXPECT_EQ(nlohmann::json::parse(without.out).at("vertices"), largest + 1);
   expect_same_as_library(without, read_frame_csv(lammps, std::nullopt), ForceKind::normal);
+}
+
+// --format gudhi: the library's diagrams in sublevel form, PD0's lines then PD1's, under both conventions.
+TEST_F(DiagramCli, GudhiFormatIsTheLibrarysDiagramsNegated) {
+  const auto contacts = kFrames / "frame_0009_contacts.csv", particles = kFrames / "frame_0009_particles.csv";
+  const FrameDiagrams expected =
+      compute_persistence(build_network(read_frame_csv(contacts, particles), ForceKind::normal));
+  for (const std::string essential : {"inf", "floor"}) {
+    const ProcessResult r = analyze({"diagram", "--contacts", contacts.string(), "--particles", particles.string(),
+                                     "--format", "gudhi", "--essential", essential});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, diagram_gudhi_text(expected, parse_gudhi_essential(essential)));
+    EXPECT_EQ(r.out.rfind("# ", 0), 0u) << "a comment line first";
+    EXPECT_NE(r.out.find("\n1 -"), std::string::npos) << "PD1 lines";
+  }
+  const ProcessResult by_default =
+      analyze({"diagram", "--contacts", contacts.string(), "--particles", particles.string(), "--format", "gudhi"});
+  EXPECT_EQ(by_default.out, diagram_gudhi_text(expected, GudhiEssential::inf));
+  EXPECT_THAT(failure_message({"diagram", "--contacts", contacts.string(), "--format", "csv"}), HasSubstr("csv"));
+  EXPECT_THAT(failure_message({"diagram", "--contacts", contacts.string(), "--format", "gudhi", "--essential", "x"}),
+              HasSubstr("--essential"));
+  EXPECT_THAT(failure_message({"diagram", "--contacts", contacts.string(), "--essential", "floor"}),
+              HasSubstr("--format gudhi"));
+}
+
+// Contacts given as force vectors (i,j,fx,fy) go through the same front end as magnitudes.
+TEST_F(DiagramCli, ForceVectorsGiveTheDiagramsOfTheirMagnitudes) {
+  const auto particles = write("p.csv", "id,x,y,r\n0,0,0,0.5\n1,1,0,0.5\n2,2,0,0.5\n3,1,1,0.5\n");
+  // Forces on i: (1,0) pushes 1 away from 0 with 2 and shears by 0; (1,2) by 1 and 0.5; (3,1) by 3 and 1.
+  const auto vectors = write("v.csv", "i,j,fx,fy\n1,0,2,0\n1,2,-1,0.5\n3,1,1,3\n");
+  const auto magnitudes = write("m.csv", "i,j,fn,ft\n1,0,2,0\n1,2,1,0.5\n3,1,3,1\n");
+  for (const std::string force : {"normal", "tangential"}) {
+    const ProcessResult from_vectors =
+        analyze({"diagram", "--contacts", vectors.string(), "--particles", particles.string(), "--force", force});
+    const ProcessResult from_magnitudes =
+        analyze({"diagram", "--contacts", magnitudes.string(), "--particles", particles.string(), "--force", force});
+    ASSERT_EQ(from_vectors.exit_code, 0) << from_vectors.err;
+    EXPECT_EQ(from_vectors.out, from_magnitudes.out) << force;
+  }
+  EXPECT_THAT(failure_message({"diagram", "--contacts", vectors.string()}),
+              AllOf(HasSubstr(vectors.string()), HasSubstr("particles")));
 }
 
 TEST_F(DiagramCli, HelpExitsZeroAndMentionsEveryOption) {

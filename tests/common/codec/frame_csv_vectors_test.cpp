@@ -1,0 +1,215 @@
+// The contacts CSV's second form, i,j,fx,fy: force vectors split along the line of centres, as
+// experiments (photoelastic disks) and other codes report them. A frame written both ways has the
+// same diagrams; proto/frames.md's example reads as it says.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "common/codec/frame_csv.hpp"
+#include "common/topology/contact_force.hpp"
+#include "common/topology/force_network.hpp"
+#include "common/topology/persistence.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fnet {
+namespace {
+
+using fnet::testing::TempDir;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+template <class Read>
+std::string csv_error(Read read) {
+  try {
+    read();
+  } catch (const CsvError& e) {
+    return e.what();
+  }
+  return "<accepted>";
+}
+
+std::string number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+// A photoelastic-like frame: a bidisperse packing of disks (radii 0.5 and 0.6, as the two sizes of
+// an experiment's disks) on a jittered triangular lattice, each neighbouring pair in contact with
+// probability 0.7 (missing contacts leave loops of four or more grains, so PD1 is not empty), a
+// normal force drawn from an exponential law and a tangential one up to 0.5 of it, a quarter of
+// the contacts purely normal (ft = 0, as α = 0 in a photoelastic fit).
+Frame photoelastic_like_frame() {
+  std::mt19937_64 random(21);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::exponential_distribution<double> exponential(1.0);
+  constexpr int kSide = 24;
+  Frame frame;
+  frame.label = "photoelastic-like";
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col)
+      frame.particles.push_back({1.1 * (col + 0.5 * (row % 2)) + 0.05 * (unit(random) - 0.5),
+                                 1.1 * std::sqrt(3.0) / 2 * row + 0.05 * (unit(random) - 0.5),
+                                 unit(random) < 0.5 ? 0.5 : 0.6});
+  frame.particle_count = frame.particles.size();
+  const auto index = [&](int row, int col) { return static_cast<std::int64_t>(row * kSide + col); };
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col) {
+      // The neighbours to the right, up-right and up-left on the lattice (odd rows shifted right).
+      const int shift = row % 2;
+      const std::vector<std::pair<int, int>> neighbours{
+          {row, col + 1}, {row + 1, col + shift}, {row + 1, col + shift - 1}};
+      for (const auto& [r, c] : neighbours) {
+        if (r >= kSide || c < 0 || c >= kSide || unit(random) > 0.7) continue;
+        const double fn = 0.05 + exponential(random);
+        const double ft = unit(random) < 0.25 ? 0.0 : 0.5 * fn * unit(random);
+        frame.contacts.push_back({index(row, col), index(r, c), fn, ft});
+      }
+    }
+  return frame;
+}
+
+// Writes the particles table and the contacts, as magnitudes or as the force on grain i: its
+// normal part along x_i - x_j and its tangential part on either side, at random.
+std::string particles_csv(const Frame& frame) {
+  std::string out = "id,x,y,r\n";
+  for (std::size_t k = 0; k < frame.particles.size(); ++k) {
+    const Particle& p = frame.particles[k];
+    out += std::to_string(k) + "," + number(p.x) + "," + number(p.y) + "," + number(p.r) + "\n";
+  }
+  return out;
+}
+
+std::string magnitudes_csv(const Frame& frame) {
+  std::string out = "i,j,fn,ft\n";
+  for (const Contact& c : frame.contacts)
+    out += std::to_string(c.i) + "," + std::to_string(c.j) + "," + number(c.fn) + "," + number(c.ft) + "\n";
+  return out;
+}
+
+std::string vectors_csv(const Frame& frame) {
+  std::mt19937_64 random(5);
+  std::string out = "i,j,fx,fy\n";
+  for (const Contact& c : frame.contacts) {
+    const Particle& a = frame.particles[static_cast<std::size_t>(c.i)];
+    const Particle& b = frame.particles[static_cast<std::size_t>(c.j)];
+    const double length = std::hypot(a.x - b.x, a.y - b.y);
+    const double nx = (a.x - b.x) / length, ny = (a.y - b.y) / length;
+    const double side = random() % 2 ? 1.0 : -1.0;
+    const double fx = c.fn * nx - side * c.ft * ny, fy = c.fn * ny + side * c.ft * nx;
+    out += std::to_string(c.i) + "," + std::to_string(c.j) + "," + number(fx) + "," + number(fy) + "\n";
+  }
+  return out;
+}
+
+void expect_close(const Diagram& got, const Diagram& want, const char* what) {
+  ASSERT_EQ(got.size(), want.size()) << what;
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    EXPECT_NEAR(got[k].birth, want[k].birth, 1e-12) << what << " point " << k;
+    EXPECT_NEAR(got[k].death, want[k].death, 1e-12) << what << " point " << k;
+  }
+}
+
+TEST(FrameCsvVectors, PhotoelasticLikeFrameGivenAsVectorsHasTheDiagramsOfItsMagnitudes) {
+  TempDir dir;
+  const Frame frame = photoelastic_like_frame();
+  const auto particles = dir.write("p.csv", particles_csv(frame));
+  const Frame magnitudes = read_frame_csv(dir.write("magnitudes.csv", magnitudes_csv(frame)), particles);
+  const Frame vectors = read_frame_csv(dir.write("vectors.csv", vectors_csv(frame)), particles);
+  ASSERT_EQ(vectors.contacts.size(), frame.contacts.size());
+  std::size_t purely_normal = 0;
+  for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
+    EXPECT_NEAR(vectors.contacts[k].fn, frame.contacts[k].fn, 1e-14 * frame.contacts[k].fn) << k;
+    EXPECT_NEAR(vectors.contacts[k].ft, frame.contacts[k].ft, 1e-14 * frame.contacts[k].fn) << k;
+    if (frame.contacts[k].ft == 0) {
+      ++purely_normal;
+      EXPECT_EQ(vectors.contacts[k].ft, 0.0) << "a purely normal force has no tangential part, not rounding: " << k;
+    }
+  }
+  EXPECT_GT(purely_normal, 50u);
+  for (const ForceKind kind : {ForceKind::normal, ForceKind::tangential}) {
+    const FrameDiagrams want = compute_persistence(build_network(magnitudes, kind));
+    const FrameDiagrams got = compute_persistence(build_network(vectors, kind));
+    EXPECT_FALSE(want.pd1.empty()) << "the frame must have loops to compare";
+    EXPECT_EQ(got.edges, want.edges);
+    EXPECT_EQ(got.triangles, want.triangles);
+    expect_close(got.pd0, want.pd0, kind == ForceKind::normal ? "normal pd0" : "tangential pd0");
+    expect_close(got.pd1, want.pd1, kind == ForceKind::normal ? "normal pd1" : "tangential pd1");
+  }
+}
+
+// proto/frames.md's example, taken from the page: the two csv blocks, particles then contacts.
+TEST(FrameCsvVectors, TheDocumentsExampleReadsAsItSays) {
+  std::ifstream in(std::string(FNET_SOURCE_DIR) + "/proto/frames.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string page = text.str();
+  std::vector<std::string> blocks;
+  const std::regex block("```csv\n([^`]*)```");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), block); it != std::sregex_iterator(); ++it)
+    blocks.push_back((*it)[1].str());
+  ASSERT_EQ(blocks.size(), 2u);
+  TempDir dir;
+  const Frame f = read_frame_csv(dir.write("c.csv", blocks[1]), dir.write("p.csv", blocks[0]));
+  ASSERT_EQ(f.contacts.size(), 2u);
+  EXPECT_EQ(f.contacts[0].fn, 2.0);
+  EXPECT_EQ(f.contacts[0].ft, 0.0);
+  EXPECT_EQ(f.contacts[1].fn, 1.0);
+  EXPECT_EQ(f.contacts[1].ft, 0.5);
+}
+
+TEST(FrameCsvVectors, SplitIsAlongTheLineOfCentresFromJToI) {
+  // The force on i pushing it away from j is compressive (fn > 0) whichever way the pair lies.
+  EXPECT_EQ(split_contact_force({3, 4, 0}, {3, 4, 0}).fn, 5.0);
+  EXPECT_EQ(split_contact_force({-3, -4, 0}, {-3, -4, 0}).fn, 5.0);
+  EXPECT_EQ(split_contact_force({3, 4, 0}, {-3, -4, 0}).fn, -5.0);
+  const ContactForceParts sheared = split_contact_force({0, 2, 0}, {1.5, 2, 0});
+  EXPECT_EQ(sheared.fn, 2.0);
+  EXPECT_EQ(sheared.ft, 1.5);
+  const ContactForceParts pure = split_contact_force({1, 1, 0}, {std::sqrt(0.5), std::sqrt(0.5), 0});
+  EXPECT_NEAR(pure.fn, 1.0, 1e-15);
+  EXPECT_EQ(pure.ft, 0.0) << "rounding of the split is not a tangential force";
+  const ContactForceParts together = split_contact_force({0, 0, 0}, {3, 4, 0});
+  EXPECT_EQ(together.fn, 0.0);
+  EXPECT_EQ(together.ft, 5.0);
+}
+
+TEST(FrameCsvVectors, VectorsWithoutPositionsAreRefusedNamingTheFile) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fx,fy\n0,1,1,0\n");
+  EXPECT_THAT(csv_error([&] { read_frame_csv(contacts, std::nullopt); }),
+              AllOf(HasSubstr(contacts.string()), HasSubstr("fx,fy"), HasSubstr("particles")));
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(contacts); }), AllOf(HasSubstr(contacts.string()), HasSubstr("fx,fy")));
+  const auto particles = dir.write("p.csv", "id,x,y,r\n0,0,0,0.5\n1,1,0,0.5\n");
+  const auto beyond = dir.write("c2.csv", "i,j,fx,fy\n0,1,1,0\n1,2,1,0\n");
+  EXPECT_THAT(csv_error([&] { read_frame_csv(beyond, particles); }),
+              AllOf(HasSubstr(beyond.string() + ":3:"), HasSubstr("particle index 2")));
+}
+
+TEST(FrameCsvVectors, AHeaderWithNeitherFormNamesBoth) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fx,ft\n0,1,1,0\n");
+  EXPECT_THAT(csv_error([&] { read_contacts_csv(contacts); }),
+              AllOf(HasSubstr(contacts.string() + ":1:"), HasSubstr("'fn'"), HasSubstr("i,j,fn,ft or i,j,fx,fy")));
+}
+
+TEST(FrameCsvVectors, MagnitudesWinWhenAFileHasBothForms) {
+  TempDir dir;
+  const auto contacts = dir.write("c.csv", "i,j,fx,fy,fn,ft\n0,1,9,9,1.5,0.25\n");
+  const Frame f = read_frame_csv(contacts, std::nullopt);
+  ASSERT_EQ(f.contacts.size(), 1u);
+  EXPECT_EQ(f.contacts[0].fn, 1.5);
+  EXPECT_EQ(f.contacts[0].ft, 0.25);
+}
+
+}  // namespace
+}  // namespace fnet
