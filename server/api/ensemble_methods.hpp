@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "server/api/api_methods.hpp"
+#include "server/api/method.hpp"
 
 namespace fnet::server {
 

@@ -2,7 +2,7 @@
 // frame (proto/api.md).
 #pragma once
 
-#include "server/api/api_methods.hpp"
+#include "server/api/method.hpp"
 
 namespace fnet::server {
 
