@@ -135,7 +135,11 @@ bool line_start(const LineAlignment& alignment, const DiagonalFlowParams& params
     hubs.refresh_points(flow);
     return true;
   }
+  // The empty flow with zero potentials: every reduced cost is a cost, >= 0, so no pair arc is
+  // violated and the failed start's penalty must not linger in the dual bound.
   flow.clear();
+  certificate.clear_violations();
+  certificate.pairs_feasible();
   hubs.refresh_points(flow);
   return false;
 }

@@ -17,8 +17,8 @@ namespace fnet {
 // the diagonal sends both there) and finds potentials by label-correcting sweeps on the candidate
 // graph, checked over every pair; violated arcs join the candidates and the potentials come down
 // along them. true: the flow and its potentials are in place, feasible on every pair arc, hub
-// streams refreshed. false (the flow empty again): a negative cycle (a band that cut the
-// programme's optimum off) or no certificate within params.line_rounds rounds.
+// streams refreshed. false (the flow empty again, its potentials zero, no pair arc violated): a negative cycle (a band
+// that cut the programme's optimum off) or no certificate within params.line_rounds rounds.
 bool line_start(const LineAlignment& alignment, const DiagonalFlowParams& params, FlowState& flow, HubArcs& hubs,
                 PairOracle& oracle, CandidateArcs& candidates, DualCertificate& certificate);
 

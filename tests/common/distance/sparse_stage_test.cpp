@@ -182,6 +182,28 @@ TEST(DistanceSparseStage, LineStartReachesTheCompleteGraphOptimum) {
   EXPECT_EQ(on_line, solves) << "the line start was not taken on every mostly-line pair with distinct births";
 }
 
+// A line start that fails on a pair too large to stage leaves the solve to the complete graph,
+// from the empty flow and zero potentials: its certificate then holds on every pair, so the dual
+// bound of the exact answer is the optimum, not the optimum less the failed start's violations.
+TEST(DistanceSparseStage, AFailedLineStartLeavesNoPenaltyInTheDualBound) {
+  std::mt19937_64 rng(2207);
+  DiagonalFlowParams params;
+  params.staged_max_points = 10;  // too large to stage, for q = 2
+  params.line_rounds = 0;         // the line start gives up at its first violated pair
+  std::size_t failed = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const LinePair p = mostly_line_pair(rng, 400 + 100 * trial, 0.4, false);
+    DiagonalFlow flow(p.a, p.b, ArcPower(2), params), complete(p.a, p.b, ArcPower(2));
+    flow.solve();
+    complete.solve_complete();
+    failed += !flow.started_on_line();
+    const double scale = std::max(1.0, complete.primal_cost());
+    EXPECT_NEAR(flow.primal_cost(), complete.primal_cost(), 1e-12 * scale) << "trial " << trial;
+    EXPECT_NEAR(flow.dual_bound(), flow.primal_cost(), 1e-11 * scale) << "trial " << trial;
+  }
+  EXPECT_GT(failed, 0u) << "no line start failed: the case is not exercised";
+}
+
 // On the LAMMPS PD1 pairs (~90 % on the line) the line start is what the solver takes.
 TEST(DistanceSparseStage, LammpsPd1PairsStartOnTheLine) {
   for (const bool tangential : {false, true}) {
