@@ -12,6 +12,7 @@ line) and failing when the normal force is read as the whole pair force. Exit st
 check holds, 1 otherwise.
 """
 import argparse
+import json
 import math
 import os
 import re
@@ -162,6 +163,24 @@ def run_style(style, args, doc, work):
         check(off < 1e-3 * mean, f"step {step}: pair vectors add up to LAMMPS's per-atom forces within {off:.2e}")
         pushing = sum(1 for v in want.values() if v[0] > 0)
         check(abs(f["z"] - 2 * pushing / f["grains"]) < 1e-12, f"step {step}: Z {f['z']:.6f} = 2 x {pushing} / {f['grains']}")
+    # diagram and explain read the frames store stored: the diagram's vertices are the grains, its
+    # edges the contacts with F_n > 0, the same from the file and from the pattern; explain the same
+    # from two files and from two TIMESTEPs of the pattern, its grains with positions.
+    by_step = {f["step"]: f for f in frames}
+    one = json.load(open(os.path.join(work, "diagram-15000.json")))
+    check(one == json.load(open(os.path.join(work, "diagram-15000-of-run.json"))),
+          "diagram: one file's frame = the pattern's frame of its TIMESTEP")
+    f15 = by_step.get(15000)
+    if f15 is not None:
+        pushing = int(sum(1 for fo in f15["forces"] if fo[0] > 0))
+        check(one["vertices"] == f15["grains"] and one["edges"] == pushing,
+              f"diagram: {one['vertices']} vertices, {one['edges']} edges; stored {f15['grains']} grains, {pushing} pushing")
+    ex = json.load(open(os.path.join(work, "explain-14000-17000.json")))
+    ex_files = json.load(open(os.path.join(work, "explain-files.json")))
+    check(ex["value"] == ex_files["value"] and ex["explain"] == ex_files["explain"] and len(ex["explain"]) == 3,
+          f"explain: the same from two TIMESTEPs and from two files ({ex['value']})")
+    check(all("positions" in t["a"]["birth_simplex"] for t in ex["explain"] if t["a"]),
+          "explain: the grains have positions")
     # The normal force read as the whole pair force (the tangential columns forgotten): the balance
     # fails, naming a frame.
     wrong = "--columns 'fx=c_fnet_force[1],fy=c_fnet_force[2]'"

@@ -1,0 +1,116 @@
+#include "server/sources/lammps_input.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
+
+#include "server/sources/force_balance.hpp"
+
+namespace fnet::sources {
+
+namespace {
+
+double tolerance_of(const std::string& text) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !(value > 0) || !std::isfinite(value))
+    throw boost::program_options::error("--check-balance: \"" + text + "\" is not a positive number");
+  return value;
+}
+
+template <class Parse>
+auto usage(const std::string& flag, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw boost::program_options::error(flag + ": " + e.what());
+  }
+}
+
+bool earlier(const DumpSnapshot& a, const DumpSnapshot& b) { return a.timestep < b.timestep; }
+
+// The first snapshot of `a` without a partner of the same TIMESTEP in `b`.
+const DumpSnapshot* unmatched(const std::vector<DumpSnapshot>& a, const std::vector<DumpSnapshot>& b) {
+  for (const DumpSnapshot& s : a)
+    if (!std::binary_search(b.begin(), b.end(), s, earlier)) return &s;
+  return nullptr;
+}
+
+void check_balance(const LammpsFrame& frame, const GrainIds& grains, double tolerance) {
+  const ForceBalance balance = usage("--check-balance", [&] { return force_balance(frame, tolerance); });
+  if (balance.unbalanced.empty()) return;
+  std::ostringstream out;
+  out << frame.where << ": timestep " << frame.run.header.step << ": " << balance.unbalanced.size() << " of "
+      << grains.ids.size() << " grains out of force balance by more than " << tolerance << " x the mean contact force "
+      << balance.mean_force << " (worst: atom id";
+  for (std::size_t k = 0; k < std::min<std::size_t>(5, balance.unbalanced.size()); ++k)
+    out << " " << grains.ids[balance.unbalanced[k].grain] << " at " << balance.unbalanced[k].net;
+  out << "); a force column read as the wrong quantity? (--columns)";
+  throw std::runtime_error(out.str());
+}
+
+}  // namespace
+
+std::string flag_value(const SourceArguments& given, const std::string& name) {
+  const auto it = given.find(name);
+  return it == given.end() ? std::string() : it->second;
+}
+
+LammpsOptions lammps_options(const SourceArguments& given) {
+  LammpsOptions out;
+  out.atoms = given.at("lammps-atoms");
+  out.pairs = given.at("lammps-pairs");
+  const std::string walls = flag_value(given, "wall-types"), columns = flag_value(given, "columns"),
+                    tolerance = flag_value(given, "check-balance");
+  if (!walls.empty()) out.wall_types = usage("--wall-types", [&] { return parse_wall_types(walls); });
+  out.columns =
+      columns.empty() ? default_pair_columns() : usage("--columns", [&] { return parse_pair_columns(columns); });
+  if (!tolerance.empty()) out.balance_tolerance = tolerance_of(tolerance);
+  return out;
+}
+
+std::vector<DumpSnapshot> snapshots(const std::string& pattern, DumpKind kind) {
+  std::vector<DumpSnapshot> out;
+  for (const std::filesystem::path& file : dump_files(pattern))
+    for (DumpSnapshot& s : read_dump(file, kind)) out.push_back(std::move(s));
+  std::stable_sort(out.begin(), out.end(), earlier);
+  for (std::size_t k = 1; k < out.size(); ++k)
+    if (out[k].timestep == out[k - 1].timestep)
+      throw std::runtime_error(out[k].where() + ": TIMESTEP " + std::to_string(out[k].timestep) + " again (first at " +
+                               out[k - 1].where() + ")");
+  return out;
+}
+
+void require_paired(const std::vector<DumpSnapshot>& atoms, const std::vector<DumpSnapshot>& pairs,
+                    const LammpsOptions& options) {
+  if (const DumpSnapshot* s = unmatched(atoms, pairs))
+    throw std::runtime_error(s->where() + ": TIMESTEP " + std::to_string(s->timestep) +
+                             " has no snapshot in the pair dumps " + options.pairs);
+  if (const DumpSnapshot* s = unmatched(pairs, atoms))
+    throw std::runtime_error(s->where() + ": TIMESTEP " + std::to_string(s->timestep) +
+                             " has no snapshot in the per-atom dumps " + options.atoms);
+}
+
+LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, const GrainIds& grains,
+                          const LammpsOptions& options, std::uint32_t index) {
+  LammpsFrame frame = lammps_frame(atoms, pairs, grains, options.columns, options.wall_types, index);
+  if (options.balance_tolerance > 0) check_balance(frame, grains, options.balance_tolerance);
+  return frame;
+}
+
+std::string lammps_config(const LammpsOptions& options, DensityRegion region) {
+  return nlohmann::json{{"source",
+                         {{"kind", "lammps"},
+                          {"atoms", options.atoms},
+                          {"pairs", options.pairs},
+                          {"wall_types", options.wall_types},
+                          {"rho", density_region_name(region)}}}}
+      .dump();
+}
+
+}  // namespace fnet::sources
