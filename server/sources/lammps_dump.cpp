@@ -222,10 +222,8 @@ void DumpTail::require_read() const {
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path_, error);
   if (error || size == end_.offset) return;
-  // Reading the rest as a whole file names what is missing.
-  TextLines::Start rest = end_;
-  rest.whole_lines_only = false;
-  DumpReader(path_, kind_, rest).read();
+  // Reading the rest as it stands names what is missing.
+  DumpReader(path_, kind_, end_).read();
   throw std::runtime_error(path_.string() + ":" + std::to_string(end_.line + 1) + ": a snapshot cut short");
 }
 

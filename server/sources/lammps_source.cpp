@@ -1,7 +1,11 @@
-// A LAMMPS run: its per-atom dumps and the local dumps of its pair forces (proto/lammps.md).
+// A LAMMPS run: its per-atom dumps and the local dumps of its pair forces (proto/lammps.md), read
+// whole, or followed while LAMMPS writes them (lammps_follow.hpp).
 #include <algorithm>
 #include <cstdint>
 
+#include <boost/program_options.hpp>
+
+#include "server/sources/lammps_follow.hpp"
 #include "server/sources/lammps_input.hpp"
 #include "server/sources/source_kinds.hpp"
 
@@ -43,7 +47,11 @@ class LammpsRun final : public FrameSource {
 };
 
 std::unique_ptr<FrameSource> open(const SourceArguments& given) {
-  return std::make_unique<LammpsRun>(lammps_options(given));
+  const LammpsOptions options = lammps_options(given);
+  if (given.count("follow")) return follow_lammps(options, follow_options(given));
+  for (const char* flag : {"idle-timeout", "lammps-log"})
+    if (given.count(flag)) throw boost::program_options::error(std::string("--") + flag + " needs --follow");
+  return std::make_unique<LammpsRun>(options);
 }
 
 }  // namespace
@@ -65,6 +73,19 @@ std::vector<SourceFlag> lammps_flags(const std::string& value_name) {
            SourceFlag::Path::none, false}};
 }
 
-SourceKind lammps_kind() { return {"LAMMPS run", lammps_flags("PATTERN"), false, open}; }
+SourceKind lammps_kind() {
+  std::vector<SourceFlag> flags = lammps_flags("PATTERN");
+  flags.push_back({"follow", "",
+                   "follow the dumps while LAMMPS writes them: each frame as soon as both its snapshots are whole, "
+                   "until --lammps-log says the run finished or --idle-timeout passes without a new one",
+                   SourceFlag::Path::none, false});
+  flags.push_back({"idle-timeout", "SECONDS",
+                   "with --follow: the input has ended once no snapshot was completed for this long (default 300)",
+                   SourceFlag::Path::none, false});
+  flags.push_back({"lammps-log", "LOG",
+                   "with --follow: LAMMPS's log (-log LOG); the input has ended once it says \"Total wall time\"",
+                   SourceFlag::Path::none, false});
+  return {"LAMMPS run", std::move(flags), false, open};
+}
 
 }  // namespace fnet::sources
