@@ -106,7 +106,8 @@ def run_style(style, args, doc, work):
         check(False, f"lmp ran ({r.returncode}): {open(os.path.join(work, 'log.lammps')).read()[-2000:]}")
         return
     env = dict(os.environ, PATH=os.path.dirname(args.fnet_analyze) + os.pathsep + os.environ["PATH"])
-    for line in blocks(doc, "sh"):
+    # The blocks that follow a run live are tests/e2e/lammps_follow_test.py's, with a server.
+    for line in (b for b in blocks(doc, "sh") if "--follow" not in b):
         r = subprocess.run(line, shell=True, cwd=work, env=env, capture_output=True, text=True)
         check(r.returncode == 0, f"{line.strip()}: exit {r.returncode} {r.stderr.strip()}")
     # LAMMPS's numbers: step, touching pairs x 2, rho.
