@@ -66,7 +66,8 @@ std::vector<SourceFlag> lammps_flags(const std::string& value_name) {
            SourceFlag::Path::none, false},
           {"columns", "ROLE=NAME,...",
            "the pair dump's columns: i=,j= and fn=,ft= (signed normal, tangential magnitude) or fnx=,fny=[,fnz=] "
-           "and ftx=,fty=[,ftz=] or the total fx=,fy=[,fz=] on atom i (default: proto/lammps.md's lines)",
+           "and ftx=,fty=[,ftz=] or the total fx=,fy=[,fz=] on atom i (default: proto/lammps.md's lines); wall=ID: "
+           "fix wall/gran ID contacts in the per-atom dump",
            SourceFlag::Path::none, false},
           {"check-balance", "TOL",
            "fail when a grain's net contact force exceeds TOL x the mean contact force (needs force vectors)",
