@@ -71,28 +71,30 @@ def follow_block(doc, case):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case", choices=("serial", "mpi"))
+    ap.add_argument("case", choices=("serial", "mpi", "input"),
+                    help="input: only write the mpi case's in.fnet into the workdir (for another test)")
     ap.add_argument("--source-dir", required=True)
     ap.add_argument("--build-dir", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--domain", type=int, required=True)
     a = ap.parse_args()
     a.source_dir = os.path.abspath(a.source_dir)
-    sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
-    import fnet  # noqa: E402
-
     bin_dir = os.path.join(os.path.abspath(a.build_dir), "bin")
     work = os.path.abspath(a.workdir)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     doc = open(os.path.join(a.source_dir, "proto", "lammps.md")).read()
     lines = blocks(doc, "lammps")[0].replace(" 1000 ", " 500 ")
-    block = follow_block(doc, a.case)
-    if a.case == "mpi":  # the page's mpi block reads one file of every snapshot
+    block = follow_block(doc, "serial" if a.case == "serial" else "mpi")
+    if a.case != "serial":  # the page's mpi block reads one file of every snapshot
         lines = lines.replace("atoms.*.txt", "atoms.txt").replace("pairs.*.txt", "pairs.txt")
         if os.geteuid() == 0:
             block = block.replace("mpirun ", "mpirun --allow-run-as-root --oversubscribe ", 1)
     open(os.path.join(work, "in.fnet"), "w").write(INPUT.format(doc=lines))
+    if a.case == "input":
+        return 0
+    sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
+    import fnet  # noqa: E402
     run_id = re.search(r"--run-id (\S+)", block).group(1)
     block = block.replace(f"--run-id {run_id}", f"--run-id {run_id} --domain {a.domain} --wait-for-reader 30")
     env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ["PATH"],
