@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "server/sources/force_balance.hpp"
+#include "server/sources/lammps_thermo.hpp"
 
 namespace fnet::sources {
 
@@ -71,6 +72,13 @@ LammpsOptions lammps_options(const SourceArguments& given) {
   out.columns =
       columns.empty() ? default_pair_columns() : usage("--columns", [&] { return parse_pair_columns(columns); });
   if (!tolerance.empty()) out.balance_tolerance = tolerance_of(tolerance);
+  out.rho = flag_value(given, "rho");
+  if (!out.rho.empty()) {
+    const std::size_t colon = out.rho.rfind(':');
+    if (out.rho.rfind("log:", 0) != 0 || colon <= 4 || colon + 1 == out.rho.size())
+      throw boost::program_options::error("--rho: \"" + out.rho + "\" is not log:PATH:COLUMN");
+    out.rho_by_step = thermo_column(out.rho.substr(4, colon - 4), out.rho.substr(colon + 1));
+  }
   return out;
 }
 
@@ -100,6 +108,14 @@ LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, 
                           const LammpsOptions& options, std::uint32_t index) {
   LammpsFrame frame = lammps_frame(atoms, pairs, grains, options.columns, options.wall_types, index);
   if (options.balance_tolerance > 0) check_balance(frame, grains, options.balance_tolerance);
+  if (!options.rho.empty()) {
+    const auto it = options.rho_by_step.find(atoms.timestep);
+    if (it == options.rho_by_step.end())
+      throw std::runtime_error(atoms.where() + ": TIMESTEP " + std::to_string(atoms.timestep) +
+                               " has no thermo row in --rho " + options.rho +
+                               " (thermo output at every step the dumps are written)");
+    frame.run.header.rho = it->second;
+  }
   return frame;
 }
 
@@ -109,7 +125,7 @@ std::string lammps_config(const LammpsOptions& options, DensityRegion region) {
                           {"atoms", options.atoms},
                           {"pairs", options.pairs},
                           {"wall_types", options.wall_types},
-                          {"rho", density_region_name(region)}}}}
+                          {"rho", options.rho.empty() ? std::string(density_region_name(region)) : options.rho}}}}
       .dump();
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,14 +19,19 @@ struct LammpsOptions {
   std::vector<int> wall_types;
   PairColumns columns;
   double balance_tolerance = 0;  // 0: no force-balance check
+  // --rho log:PATH:COLUMN: ρ of each frame is COLUMN of the log's thermo row of its TIMESTEP
+  // (lammps_thermo.hpp); empty: ρ from the dumps (lammps_frame.hpp).
+  std::string rho;
+  std::map<std::uint64_t, double> rho_by_step;
 };
 
 // The flags of every kind that reads LAMMPS dumps: --lammps-atoms and --lammps-pairs, whose values
 // are called `value_name` in the usage line, --wall-types, --columns, --check-balance.
 std::vector<SourceFlag> lammps_flags(const std::string& value_name);
 
-// The flags --lammps-atoms, --lammps-pairs, --wall-types, --columns and --check-balance as given;
-// usage errors (boost::program_options::error) name the flag.
+// The flags --lammps-atoms, --lammps-pairs, --wall-types, --columns, --check-balance and --rho as
+// given (the log --rho names is read here); usage errors (boost::program_options::error) name the
+// flag.
 LammpsOptions lammps_options(const SourceArguments& given);
 
 // The value of an optional flag, empty when not given.
@@ -39,7 +45,8 @@ std::vector<DumpSnapshot> snapshots(const std::string& pattern, DumpKind kind);
 void require_paired(const std::vector<DumpSnapshot>& atoms, const std::vector<DumpSnapshot>& pairs,
                     const LammpsOptions& options);
 
-// Frame `index` of a run, with the force-balance check the options ask for.
+// Frame `index` of a run, with the force-balance check the options ask for, and ρ from the log
+// where they name one (a TIMESTEP without its thermo row throws).
 LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, const GrainIds& grains,
                           const LammpsOptions& options, std::uint32_t index);
 

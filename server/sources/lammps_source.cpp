@@ -48,7 +48,12 @@ class LammpsRun final : public FrameSource {
 
 std::unique_ptr<FrameSource> open(const SourceArguments& given) {
   const LammpsOptions options = lammps_options(given);
-  if (given.count("follow")) return follow_lammps(options, follow_options(given));
+  if (given.count("follow")) {
+    if (!options.rho.empty())
+      throw boost::program_options::error(
+          "--rho log: does not go with --follow (LAMMPS writes its log behind the dumps)");
+    return follow_lammps(options, follow_options(given));
+  }
   for (const char* flag : {"idle-timeout", "lammps-log"})
     if (given.count(flag)) throw boost::program_options::error(std::string("--") + flag + " needs --follow");
   return std::make_unique<LammpsRun>(options);
@@ -71,6 +76,10 @@ std::vector<SourceFlag> lammps_flags(const std::string& value_name) {
            SourceFlag::Path::none, false},
           {"check-balance", "TOL",
            "fail when a grain's net contact force exceeds TOL x the mean contact force (needs force vectors)",
+           SourceFlag::Path::none, false},
+          {"rho", "log:LOG:COLUMN",
+           "rho of each frame from the LAMMPS log's thermo output (thermo_style custom step COLUMN) at its "
+           "TIMESTEP, in place of the grains' area over the region",
            SourceFlag::Path::none, false}};
 }
 

@@ -393,6 +393,23 @@ TEST(LammpsFollow, UsageErrors) {
   EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--follow",
                                    "--idle-timeout", "soon"}),
               HasSubstr("--idle-timeout"));
+  // --rho log: names the log and the column; the log is read when the run opens.
+  const std::vector<std::string> base{"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt"};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return what_of(dir.path(), args);
+  };
+  EXPECT_THAT(with({"--rho", "log:log.lammps"}), HasSubstr("is not log:PATH:COLUMN"));
+  EXPECT_THAT(with({"--rho", "@log.lammps:v_rho"}), HasSubstr("is not log:PATH:COLUMN"));
+  dir.write("log.lammps", "Step Temp\n0 1\nLoop time of 1\n");
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho"}),
+              HasSubstr("no thermo output names v_rho"));
+  dir.write("log.lammps", "Step v_rho\n0 0.8\nLoop time of 1\n");
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho"}),
+              AllOf(HasSubstr("atoms.txt:1: TIMESTEP 100 has no thermo row"), HasSubstr("log.lammps:v_rho")));
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho", "--follow"}),
+              HasSubstr("does not go with --follow"));
 }
 
 }  // namespace
