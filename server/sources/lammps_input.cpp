@@ -55,6 +55,23 @@ void check_balance(const LammpsFrame& frame, const GrainIds& grains, double tole
   throw std::runtime_error(out.str());
 }
 
+// The snapshot's value of a per-atom column that holds one value on every row (a per-atom
+// variable made of a global one).
+double rho_of_column(const DumpSnapshot& atoms, const std::string& name) {
+  const auto c = atoms.column(name);
+  if (!c)
+    throw std::runtime_error(atoms.file + ":" + std::to_string(atoms.first_row_line - 1) + ": no column " + name +
+                             " (--rho column:" + name + ")");
+  if (atoms.rows() == 0)
+    throw std::runtime_error(atoms.where() + ": no atom row to read --rho column:" + name + " from");
+  const double value = atoms.at(0, *c);
+  for (std::size_t row = 0; row < atoms.rows(); ++row)
+    if (!(atoms.at(row, *c) == value) || !std::isfinite(value))
+      throw std::runtime_error(atoms.where(row) + ": column " + name +
+                               " is not one finite value on every row (--rho column: reads one per snapshot)");
+  return value;
+}
+
 }  // namespace
 
 std::string flag_value(const SourceArguments& given, const std::string& name) {
@@ -73,10 +90,13 @@ LammpsOptions lammps_options(const SourceArguments& given) {
       columns.empty() ? default_pair_columns() : usage("--columns", [&] { return parse_pair_columns(columns); });
   if (!tolerance.empty()) out.balance_tolerance = tolerance_of(tolerance);
   out.rho = flag_value(given, "rho");
-  if (!out.rho.empty()) {
+  if (out.rho.rfind("column:", 0) == 0) {
+    out.rho_column = out.rho.substr(7);
+    if (out.rho_column.empty()) throw boost::program_options::error("--rho column: names no column");
+  } else if (!out.rho.empty()) {
     const std::size_t colon = out.rho.rfind(':');
     if (out.rho.rfind("log:", 0) != 0 || colon <= 4 || colon + 1 == out.rho.size())
-      throw boost::program_options::error("--rho: \"" + out.rho + "\" is not log:PATH:COLUMN");
+      throw boost::program_options::error("--rho: \"" + out.rho + "\" is not log:PATH:COLUMN or column:NAME");
     out.rho_by_step = thermo_column(out.rho.substr(4, colon - 4), out.rho.substr(colon + 1));
   }
   return out;
@@ -108,7 +128,9 @@ LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, 
                           const LammpsOptions& options, std::uint32_t index) {
   LammpsFrame frame = lammps_frame(atoms, pairs, grains, options.columns, options.wall_types, index);
   if (options.balance_tolerance > 0) check_balance(frame, grains, options.balance_tolerance);
-  if (!options.rho.empty()) {
+  if (!options.rho_column.empty()) {
+    frame.run.header.rho = rho_of_column(atoms, options.rho_column);
+  } else if (!options.rho.empty()) {
     const auto it = options.rho_by_step.find(atoms.timestep);
     if (it == options.rho_by_step.end())
       throw std::runtime_error(atoms.where() + ": TIMESTEP " + std::to_string(atoms.timestep) +

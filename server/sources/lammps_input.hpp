@@ -20,9 +20,11 @@ struct LammpsOptions {
   PairColumns columns;
   double balance_tolerance = 0;  // 0: no force-balance check
   // --rho log:PATH:COLUMN: ρ of each frame is COLUMN of the log's thermo row of its TIMESTEP
-  // (lammps_thermo.hpp); empty: ρ from the dumps (lammps_frame.hpp).
+  // (lammps_thermo.hpp); --rho column:NAME: the per-atom dump's column NAME, one value on every
+  // row; empty: ρ from the dumps (lammps_frame.hpp).
   std::string rho;
   std::map<std::uint64_t, double> rho_by_step;
+  std::string rho_column;
 };
 
 // The flags of every kind that reads LAMMPS dumps: --lammps-atoms and --lammps-pairs, whose values

@@ -49,7 +49,7 @@ class LammpsRun final : public FrameSource {
 std::unique_ptr<FrameSource> open(const SourceArguments& given) {
   const LammpsOptions options = lammps_options(given);
   if (given.count("follow")) {
-    if (!options.rho.empty())
+    if (options.rho.rfind("log:", 0) == 0)
       throw boost::program_options::error(
           "--rho log: does not go with --follow (LAMMPS writes its log behind the dumps)");
     return follow_lammps(options, follow_options(given));
@@ -77,9 +77,9 @@ std::vector<SourceFlag> lammps_flags(const std::string& value_name) {
           {"check-balance", "TOL",
            "fail when a grain's net contact force exceeds TOL x the mean contact force (needs force vectors)",
            SourceFlag::Path::none, false},
-          {"rho", "log:LOG:COLUMN",
+          {"rho", "log:LOG:COLUMN|column:NAME",
            "rho of each frame from the LAMMPS log's thermo output (thermo_style custom step COLUMN) at its "
-           "TIMESTEP, in place of the grains' area over the region",
+           "TIMESTEP, or from a per-atom dump column holding one value, in place of the grains' area over the region",
            SourceFlag::Path::none, false}};
 }
 

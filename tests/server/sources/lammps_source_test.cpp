@@ -400,8 +400,8 @@ TEST(LammpsFollow, UsageErrors) {
     args.insert(args.end(), more.begin(), more.end());
     return what_of(dir.path(), args);
   };
-  EXPECT_THAT(with({"--rho", "log:log.lammps"}), HasSubstr("is not log:PATH:COLUMN"));
-  EXPECT_THAT(with({"--rho", "@log.lammps:v_rho"}), HasSubstr("is not log:PATH:COLUMN"));
+  EXPECT_THAT(with({"--rho", "log:log.lammps"}), HasSubstr("is not log:PATH:COLUMN or column:NAME"));
+  EXPECT_THAT(with({"--rho", "@log.lammps:v_rho"}), HasSubstr("is not log:PATH:COLUMN or column:NAME"));
   dir.write("log.lammps", "Step Temp\n0 1\nLoop time of 1\n");
   EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho"}),
               HasSubstr("no thermo output names v_rho"));
@@ -410,6 +410,42 @@ TEST(LammpsFollow, UsageErrors) {
               AllOf(HasSubstr("atoms.txt:1: TIMESTEP 100 has no thermo row"), HasSubstr("log.lammps:v_rho")));
   EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho", "--follow"}),
               HasSubstr("does not go with --follow"));
+}
+
+// --rho column:NAME: a per-atom column of one value per snapshot is the frame's ρ, followed or not;
+// a column that varies from row to row is refused, naming the row.
+TEST(LammpsSource, RhoFromAColumnOfOneValue) {
+  testing::TempDir dir;
+  const auto with_rho = [](std::string text, const std::vector<std::string>& values) {
+    text.replace(text.find("vx\n"), 3, "vx v_rho\n");
+    std::size_t at = text.find("vx v_rho\n") + 9;
+    for (const std::string& v : values) {
+      at = text.find('\n', at);
+      text.insert(at, " " + v);
+      at += v.size() + 2;
+    }
+    return text;
+  };
+  dir.write("atoms.txt", with_rho(atoms(100), {"0.625", "0.625", "0.625", "0.625"}) +
+                             with_rho(atoms(200), {"0.75", "0.75", "0.75", "0.75"}));
+  dir.write("pairs.txt", pairs(100) + pairs(200, 2));
+  for (const bool follow : {false, true}) {
+    std::vector<std::string> args{"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt",
+                                  "--wall-types",   "3",          "--rho",          "column:v_rho"};
+    if (follow) args.insert(args.end(), {"--follow", "--idle-timeout", "0.2"});
+    const auto frames = read_run(dir.path(), args);
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[0].header.rho, 0.625);
+    EXPECT_EQ(frames[1].header.rho, 0.75);
+  }
+  dir.write("varies.txt", with_rho(atoms(100), {"0.625", "0.625", "0.5", "0.625"}));
+  dir.write("pairs100.txt", pairs(100));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@varies.txt", "--lammps-pairs", "@pairs100.txt", "--rho",
+                                   "column:v_rho", "--wall-types", "3"}),
+              AllOf(HasSubstr("varies.txt:12:"), HasSubstr("not one finite value")));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--rho",
+                                   "column:v_phi", "--wall-types", "3"}),
+              HasSubstr("no column v_phi"));
 }
 
 }  // namespace

@@ -87,11 +87,12 @@ std::string usage_error(const std::vector<std::string>& args, bool run = false) 
 TEST(SourceKind, UsageLinesListEachKindsFlags) {
   EXPECT_EQ(run_usage(run_kinds()),
             "(--run-file F | --csv-dir DIR --run-id R | --lammps-atoms PATTERN --lammps-pairs PATTERN "
-            "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN] [--follow] "
+            "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] "
+            "[--follow] "
             "[--idle-timeout SECONDS] [--lammps-log LOG] --run-id R)");
   EXPECT_EQ(source_usage(frame_kinds()),
             "(--contacts C.csv [--particles P.csv] | --lammps-atoms FILE --lammps-pairs FILE [--wall-types T,...] "
-            "[--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN] [--timestep N])");
+            "[--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] [--timestep N])");
   EXPECT_EQ(run_usage(kKinds), "(--recording F [--follow] | --atoms PATTERN --pairs PATTERN [--follow] --run-id R)");
 }
 
