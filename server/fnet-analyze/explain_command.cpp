@@ -26,16 +26,23 @@ namespace fnet::analyze {
 
 int explain_command(const std::vector<std::string>& args) {
   po::options_description options(
-      "usage: fnet-analyze explain A.csv B.csv --metric bottleneck|wasserstein1|wasserstein2|wasserstein [--q Q]\n"
+      "usage: fnet-analyze explain (A.csv B.csv [--particles-a PA.csv] [--particles-b PB.csv]\n"
+      "                            | --lammps-atoms FILE --lammps-pairs FILE [--timestep A] [--wall-types T,...]\n"
+      "                              [--columns ROLE=NAME,...] [--other-timestep B]\n"
+      "                              [--other-lammps-atoms FILE --other-lammps-pairs FILE])\n"
+      "                            --metric bottleneck|wasserstein1|wasserstein2|wasserstein [--q Q]\n"
       "                            [--dim 0|1] [--force normal|tangential] [--essential floor|sentinel|separate]\n"
-      "                            [--k K] [--particles-a PA.csv] [--particles-b PB.csv] [--format table|json]\n"
+      "                            [--k K] [--format table|json]\n"
       "\n"
       "Where frame B differs most from frame A: the K longest terms of the optimal matching behind the\n"
       "distance between their diagrams (for the bottleneck the first term is the one that attains it),\n"
       "each with its two diagram points (or the diagonal) and, per point, the simplices that create and\n"
       "destroy it as grain ids: PD0 born at a grain, killed by a contact (two grains); PD1 born at a\n"
       "contact, filled by a triangle (three grains). A.csv and B.csv are contacts CSVs (i,j,fn,ft); with\n"
-      "their particle tables (id,x,y,r) each grain also gets its position. Terms of cost 0 are left out:\n"
+      "their particle tables (id,x,y,r) each grain also gets its position. From LAMMPS dumps (proto/lammps.md),\n"
+      "frame A is the snapshot pair of --timestep (default: the first) and frame B that of --other-timestep in\n"
+      "the same dumps, or in --other-lammps-atoms/--other-lammps-pairs (default: their first); grains are numbered\n"
+      "as store numbers them, and have positions. Terms of cost 0 are left out:\n"
       "an unchanged frame has none. JSON (--format json):\n"
       "  {\"value\", \"lower\", \"upper\", \"exact\", \"metric\", \"q\"?, \"dim\", \"force\", \"essential\", \"k\",\n"
       "   \"explain\": [{\"rank\", \"cost\", \"a\": point|null, \"b\": point|null}], \"seconds\"}\n"
@@ -60,11 +67,25 @@ int explain_command(const std::vector<std::string>& args) {
       "particles-b", po::value(&particles_b), "particles CSV of frame B")(
       "format", po::value(&format)->default_value("table"), "table or json")("files", po::value(&files),
                                                                              "A.csv B.csv (contacts)");
+  sources::SourceKind lammps = sources::lammps_frame_kind();
+  lammps.flags.front().required = false;  // explain's own input is the contacts files
+  const std::vector<sources::SourceKind> lammps_kinds{lammps};
+  sources::add_source_options(lammps_kinds, options);
+  options.add_options()("other-timestep", po::value<std::string>(),
+                        "frame B's TIMESTEP in the LAMMPS dumps (default with --other-lammps-atoms: the first)")(
+      "other-lammps-atoms", po::value<std::string>(), "frame B's per-atom dump, when not in --lammps-atoms")(
+      "other-lammps-pairs", po::value<std::string>(), "frame B's pair dump, with --other-lammps-atoms");
   po::positional_options_description positional;
   positional.add("files", 2);
   const auto vm = parse_options(options, args, &positional);
   if (!vm) return 0;
-  if (files.size() != 2) throw po::error("two contacts files are required (A.csv B.csv)");
+  const bool from_lammps = vm->count("lammps-atoms") > 0;
+  if (from_lammps && !files.empty()) throw po::error("give A.csv B.csv or --lammps-atoms, not both");
+  if (!from_lammps) {
+    for (const char* flag : {"other-timestep", "other-lammps-atoms", "other-lammps-pairs"})
+      if (vm->count(flag)) throw po::error(std::string("--") + flag + " goes with --lammps-atoms");
+    if (files.size() != 2) throw po::error("two contacts files are required (A.csv B.csv), or --lammps-atoms");
+  }
   const MetricChoice choice = metric_option(metric, vm->count("q") ? std::optional(q) : std::nullopt);
   const int d = named_option("--dim", [&] { return check_dim(dim); });
   const ForceKind kind = named_option("--force", [&] { return parse_force_kind(force); });
@@ -82,7 +103,28 @@ int explain_command(const std::vector<std::string>& args) {
                    contacts, particles.empty() ? std::nullopt : std::optional<std::filesystem::path>(particles)))
         .frame;
   };
-  Frame a = read(files[0], particles_a), b = read(files[1], particles_b);
+  Frame a, b;
+  if (from_lammps) {
+    if (!particles_a.empty() || !particles_b.empty())
+      throw po::error("--particles-a and --particles-b go with contacts files; LAMMPS frames have positions");
+    const sources::ChosenSource chosen = sources::choose_source(lammps_kinds, *vm);
+    sources::SourceArguments other = chosen.given;
+    other.erase("timestep");
+    if (vm->count("other-timestep")) other["timestep"] = (*vm)["other-timestep"].as<std::string>();
+    if (vm->count("other-lammps-atoms") != vm->count("other-lammps-pairs"))
+      throw po::error("--other-lammps-atoms and --other-lammps-pairs go together");
+    if (vm->count("other-lammps-atoms")) {
+      other["lammps-atoms"] = (*vm)["other-lammps-atoms"].as<std::string>();
+      other["lammps-pairs"] = (*vm)["other-lammps-pairs"].as<std::string>();
+    } else if (!vm->count("other-timestep")) {
+      throw po::error("frame B: --other-timestep, or --other-lammps-atoms and --other-lammps-pairs");
+    }
+    a = sources::next_frame(*chosen.open()).frame;
+    b = sources::next_frame(*chosen.kind->open(other)).frame;
+  } else {
+    a = read(files[0], particles_a);
+    b = read(files[1], particles_b);
+  }
   // Frame A is frame 0 of run "a", frame B frame 0 of run "b".
   query::LoadedFrames frames;
   frames.add("a", 0, std::move(a));

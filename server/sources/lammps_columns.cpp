@@ -41,7 +41,7 @@ PairColumns parse_pair_columns(std::string_view text) {
     if (!given.emplace(role, name).second) throw std::invalid_argument(role + " given twice");
   }
   PairColumns c = default_pair_columns();
-  const bool forces = given.size() > given.count("i") + given.count("j");
+  const bool forces = given.size() > given.count("i") + given.count("j") + given.count("wall");
   if (forces) {
     c.fn_vector = c.ft_vector = {};
   }
@@ -57,11 +57,13 @@ PairColumns parse_pair_columns(std::string_view text) {
                                                   {"ftz", &c.ft_vector[2]},
                                                   {"fx", &c.total[0]},
                                                   {"fy", &c.total[1]},
-                                                  {"fz", &c.total[2]}};
+                                                  {"fz", &c.total[2]},
+                                                  {"wall", &c.wall_fix}};
   for (const auto& [role, name] : given) {
     const auto it = roles.find(role);
     if (it == roles.end())
-      throw std::invalid_argument("unknown role " + role + " (i, j, fn, ft, fnx, fny, fnz, ftx, fty, ftz, fx, fy, fz)");
+      throw std::invalid_argument("unknown role " + role +
+                                  " (i, j, fn, ft, fnx, fny, fnz, ftx, fty, ftz, fx, fy, fz, wall)");
     *it->second = name;
   }
   const auto whole = [](const std::array<std::string, 3>& v) { return !v[0].empty() && !v[1].empty(); };

@@ -20,6 +20,11 @@ struct PairColumns {
   std::string i = "c_fnet_pair[1]", j = "c_fnet_pair[2]";
   std::string fn, ft;                                      // scalars; empty: not given
   std::array<std::string, 3> fn_vector, ft_vector, total;  // components; [2] may be empty in 2D
+  // The ID of a fix wall/gran ... contacts whose per-atom array the per-atom dump holds as
+  // f_ID[1] .. f_ID[7]; empty: none. Its columns, as LAMMPS 29 Sep 2021 fills them (checked by
+  // tests/server/sources/lammps_wall_test.py): 1 is 1 for a grain touching the wall, 2-4 the force
+  // on the grain, 5-7 the contact point.
+  std::string wall_fix;
   bool operator==(const PairColumns&) const = default;
 };
 
@@ -29,8 +34,8 @@ struct PairColumns {
 PairColumns default_pair_columns();
 
 // "i=NAME,j=NAME,fn=NAME,ft=NAME" with fnx= fny= fnz= ftx= fty= ftz= or fx= fy= fz= in place of
-// fn and ft: the roles given replace the defaults (i and j keep theirs unless given; naming any
-// force role drops every default force column). Throws std::invalid_argument naming what is wrong:
+// fn and ft, and wall=ID: the roles given replace the defaults (i and j keep theirs unless given;
+// naming any force role drops every default force column). Throws std::invalid_argument naming what is wrong:
 // an unknown role, a role twice, an empty name, a force given in two forms or not at all.
 PairColumns parse_pair_columns(std::string_view text);
 

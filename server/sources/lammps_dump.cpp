@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "server/sources/text_lines.hpp"
 
@@ -38,13 +39,26 @@ double number(std::string_view word) {
 
 class DumpReader {
  public:
-  DumpReader(const std::filesystem::path& path, DumpKind kind) : lines_(path), kind_(kind) {}
+  DumpReader(const std::filesystem::path& path, DumpKind kind, const TextLines::Start& start = {})
+      : lines_(path, start), kind_(kind) {}
 
   std::vector<DumpSnapshot> read() {
     std::vector<DumpSnapshot> out;
-    while (next_item()) {
-      if (item_ != "TIMESTEP") fail("expected ITEM: TIMESTEP, found ITEM: " + item_);
-      out.push_back(snapshot());
+    while (next_item()) out.push_back(timestep_snapshot());
+    return out;
+  }
+
+  // The whole snapshots from the start on; `end` is moved past the last of them.
+  std::vector<DumpSnapshot> read_whole(TextLines::Start& end) {
+    std::vector<DumpSnapshot> out;
+    try {
+      while (next_item()) {
+        out.push_back(timestep_snapshot());
+        end.offset = lines_.offset();
+        end.line = lines_.number();
+      }
+    } catch (const DumpCutShort&) {
+      // The rest is still being written.
     }
     return out;
   }
@@ -52,6 +66,15 @@ class DumpReader {
  private:
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error(lines_.path().string() + ":" + std::to_string(lines_.number()) + ": " + what);
+  }
+  [[noreturn]] void cut_short(const std::string& what) const {
+    throw DumpCutShort(lines_.path().string() + ":" + std::to_string(lines_.number()) + ": " + what +
+                       " (file cut short)");
+  }
+
+  DumpSnapshot timestep_snapshot() {
+    if (item_ != "TIMESTEP") fail("expected ITEM: TIMESTEP, found ITEM: " + item_);
+    return snapshot();
   }
 
   // Reads the next "ITEM: NAME rest" line into item_ and item_rest_; false at the end of the file.
@@ -72,12 +95,12 @@ class DumpReader {
   }
 
   void require_item(const std::string& name, const std::string& within) {
-    if (!next_item()) fail(within + " ends before ITEM: " + name + " (file cut short)");
+    if (!next_item()) cut_short(within + " ends before ITEM: " + name);
     if (item_ != name) fail("expected ITEM: " + name + ", found ITEM: " + item_);
   }
 
   void require_line(const std::string& what) {
-    if (!lines_.next(line_)) fail("the file ends before " + what + " (file cut short)");
+    if (!lines_.next(line_)) cut_short("the file ends before " + what);
   }
 
   std::uint64_t count_line(const std::string& what) {
@@ -98,7 +121,7 @@ class DumpReader {
     const std::string within = "the snapshot of TIMESTEP " + std::to_string(s.timestep);
     const std::string count_item = kind_ == DumpKind::atoms ? "NUMBER OF ATOMS" : "NUMBER OF ENTRIES";
     while (true) {
-      if (!next_item()) fail(within + " ends before ITEM: " + count_item + " (file cut short)");
+      if (!next_item()) cut_short(within + " ends before ITEM: " + count_item);
       if (item_ == "TIME") {
         require_line("the TIME");
         s.time = number(words(line_).empty() ? std::string_view() : words(line_)[0]);
@@ -123,8 +146,7 @@ class DumpReader {
     s.values.reserve(rows * s.columns.size());
     for (std::uint64_t r = 0; r < rows; ++r) {
       if (!lines_.next(line_))
-        fail(within + " ends after " + std::to_string(r) + " of its " + std::to_string(rows) +
-             " rows (file cut short)");
+        cut_short(within + " ends after " + std::to_string(r) + " of its " + std::to_string(rows) + " rows");
       const auto w = words(line_);
       if (w.size() != s.columns.size()) {
         std::string message =
@@ -179,11 +201,43 @@ std::vector<DumpSnapshot> read_dump(const std::filesystem::path& path, DumpKind 
   return DumpReader(path, kind).read();
 }
 
+DumpTail::DumpTail(std::filesystem::path path, DumpKind kind) : path_(std::move(path)), kind_(kind) {
+  end_.whole_lines_only = true;
+}
+
+std::vector<DumpSnapshot> DumpTail::read_new() {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path_, error);
+  pending_ = false;
+  if (error || size == end_.offset) return {};
+  if (size < end_.offset)
+    throw std::runtime_error(path_.string() + ": shrank from " + std::to_string(end_.offset) + " to " +
+                             std::to_string(size) + " bytes while it was read (a dump rewritten?)");
+  std::vector<DumpSnapshot> out = DumpReader(path_, kind_, end_).read_whole(end_);
+  pending_ = end_.offset < size;
+  return out;
+}
+
+void DumpTail::require_read() const {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path_, error);
+  if (error || size == end_.offset) return;
+  // Reading the rest as it stands names what is missing.
+  DumpReader(path_, kind_, end_).read();
+  throw std::runtime_error(path_.string() + ":" + std::to_string(end_.line + 1) + ": a snapshot cut short");
+}
+
 std::vector<std::filesystem::path> dump_files(const std::string& pattern) {
+  std::vector<std::filesystem::path> out = dump_files_now(pattern);
+  if (out.empty()) throw std::runtime_error(pattern + (has_wildcard(pattern) ? ": no file matches" : ": no such file"));
+  return out;
+}
+
+std::vector<std::filesystem::path> dump_files_now(const std::string& pattern) {
   namespace fs = std::filesystem;
   const fs::path path(pattern);
   if (!has_wildcard(pattern)) {
-    if (!fs::is_regular_file(path)) throw std::runtime_error(pattern + ": no such file");
+    if (!fs::is_regular_file(path)) return {};
     return {path};
   }
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -196,7 +250,6 @@ std::vector<std::filesystem::path> dump_files(const std::string& pattern) {
     if (entry.is_regular_file() && fnmatch(name.c_str(), entry.path().filename().c_str(), 0) == 0)
       out.push_back(entry.path());
   if (error) throw std::runtime_error(pattern + ": cannot list " + folder.string() + " (" + error.message() + ")");
-  if (out.empty()) throw std::runtime_error(pattern + ": no file matches");
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -9,9 +9,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "server/sources/text_lines.hpp"
 
 namespace fnet::sources {
 
@@ -48,9 +51,42 @@ struct DumpSnapshot {
 // a number, a triclinic box, a row with too few or too many values, a snapshot cut short.
 std::vector<DumpSnapshot> read_dump(const std::filesystem::path& path, DumpKind kind);
 
+// What read_dump throws when the file ends inside a snapshot, which a file still being written
+// does until the snapshot is whole.
+struct DumpCutShort : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// One dump file while LAMMPS writes it. A snapshot is whole once the file holds all of its lines,
+// each ended by its newline: its header, and as many rows as its NUMBER OF ATOMS or ENTRIES says.
+// LAMMPS writes a snapshot's header before its rows, and a row only whole with its newline, so a
+// snapshot that passes is one LAMMPS has finished writing. Plain text only: a gzip stream cannot
+// be read before it is closed.
+class DumpTail {
+ public:
+  DumpTail(std::filesystem::path path, DumpKind kind);
+  // The snapshots made whole since the last call, in the file's order. A snapshot at fault throws
+  // as read_dump does, and so does a file shorter than what was read of it.
+  std::vector<DumpSnapshot> read_new();
+  // Once the writer is done: throws "FILE:LINE: what" when the file holds more than whole
+  // snapshots (the rest of a snapshot cut short).
+  void require_read() const;
+  // Whether the file held more than whole snapshots at the last read_new: one being written.
+  bool pending() const { return pending_; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  DumpKind kind_;
+  TextLines::Start end_;  // after the last whole snapshot
+  bool pending_ = false;
+};
+
 // The files a pattern names: a path, or a path whose file name holds the wildcards * ? [...] (as
 // LAMMPS's dump.*.txt, or a shell glob), matched in its folder and sorted by name. Throws
 // std::runtime_error "PATTERN: ..." when no file matches.
 std::vector<std::filesystem::path> dump_files(const std::string& pattern);
+// The files the pattern names now, none when none does (a run that has not written them yet).
+std::vector<std::filesystem::path> dump_files_now(const std::string& pattern);
 
 }  // namespace fnet::sources

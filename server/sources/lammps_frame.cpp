@@ -153,6 +153,39 @@ GrainIds grain_ids(const DumpSnapshot& atoms, const std::vector<int>& wall_types
   return out;
 }
 
+namespace {
+
+// The contacts of fix wall/gran ... contacts, from its per-atom array in the per-atom dump: a grain
+// whose f_ID[1] is not 0 touches a wall, pushed by the force f_ID[2..4] at the point f_ID[5..7];
+// the normal is the line from that point to the grain's centre.
+void add_fix_walls(const DumpSnapshot& atoms, const GrainIds& grains, const std::string& fix, bool vectors,
+                   LammpsFrame& out) {
+  const auto column = [&](int k) {
+    const std::string name = "f_" + fix + "[" + std::to_string(k) + "]";
+    if (const auto c = atoms.column(name)) return *c;
+    fail(columns_line(atoms), "no column " + name + " (--columns wall=" + fix +
+                                  " reads fix wall/gran's contacts array from the per-atom dump)");
+  };
+  const std::size_t touching = column(1), fx = column(2), fy = column(3), fz = column(4), px = column(5),
+                    py = column(6);
+  const std::size_t id = *atoms.column("id");
+  for (std::size_t row = 0; row < atoms.rows(); ++row) {
+    const auto g = grains.index.find(atom_id(atoms, row, id));
+    if (g == grains.index.end() || value(atoms, row, touching) == 0) continue;
+    const Particle& p = out.run.frame.particles[g->second];
+    const std::array<double, 3> f{value(atoms, row, fx), value(atoms, row, fy), value(atoms, row, fz)};
+    const std::array<double, 2> d{p.x - value(atoms, row, px), p.y - value(atoms, row, py)};
+    const double distance = std::hypot(d[0], d[1]);
+    if (!(distance > 0)) fail(atoms.where(row), "the wall contact point is the grain's centre");
+    const double fn = (f[0] * d[0] + f[1] * d[1]) / distance;
+    const double ft = std::hypot(f[0] - fn * d[0] / distance, f[1] - fn * d[1] / distance, f[2]);
+    out.run.wall_contacts.push_back({g->second, fn, ft});
+    if (vectors) out.wall_forces.push_back({f[0], f[1]});
+  }
+}
+
+}  // namespace
+
 LammpsFrame lammps_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, const GrainIds& grains,
                          const PairColumns& columns, const std::vector<int>& wall_types, std::uint32_t index) {
   LammpsFrame out;
@@ -279,6 +312,8 @@ LammpsFrame lammps_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, c
       if (vectors) out.wall_forces.push_back(gi ? force : std::array<double, 2>{-force[0], -force[1]});
     }
   }
+
+  if (!columns.wall_fix.empty()) add_fix_walls(atoms, grains, columns.wall_fix, vectors, out);
 
   // ρ and Z.
   bool by_walls = false;

@@ -58,7 +58,7 @@ void add_source_options(const std::vector<SourceKind>& kinds, po::options_descri
         options.add_options()(flag.name.c_str(), po::bool_switch(), flag.meaning.c_str());
       } else {
         auto* value = po::value<std::string>();
-        if (kinds.size() == 1 && &flag == &kind.flags.front()) value->required();
+        if (kinds.size() == 1 && &flag == &kind.flags.front() && flag.required) value->required();
         options.add_options()(flag.name.c_str(), value, flag.meaning.c_str());
       }
     }

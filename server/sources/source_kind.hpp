@@ -50,7 +50,8 @@ std::string kind_usage(const SourceKind& kind);
 std::string source_usage(const std::vector<SourceKind>& kinds);
 
 // Adds each kind's flags to `options`, a flag shared by kinds once. With a single kind its
-// choosing flag is required, as any required option.
+// choosing flag is required, as any required option, unless the kind marks it not required (a
+// command that takes the kind beside inputs of its own).
 void add_source_options(const std::vector<SourceKind>& kinds, boost::program_options::options_description& options);
 
 // The kind whose choosing flag was given, with its flags' values. Usage errors, before any work:

@@ -17,9 +17,11 @@ SourceKind frame_files_kind();  // --contacts C.csv [--particles P.csv]: one fra
 SourceKind csv_run_kind();      // --csv-dir DIR: the folder fnet-simd --export-csv writes (csv_run_source.cpp)
 SourceKind run_file_kind();     // --run-file F: the HDF5 run file (run_file_source.cpp, in fnet_sources_hdf5)
 SourceKind lammps_kind();       // --lammps-atoms P --lammps-pairs P: LAMMPS dumps (lammps_source.cpp)
+// --lammps-atoms F --lammps-pairs F [--timestep N]: one frame of them (lammps_frame_source.cpp)
+SourceKind lammps_frame_kind();
 
-// One frame: diagram.
-inline std::vector<SourceKind> frame_kinds() { return {frame_files_kind()}; }
+// One frame: diagram (explain reads two of the same kinds).
+inline std::vector<SourceKind> frame_kinds() { return {frame_files_kind(), lammps_frame_kind()}; }
 // A whole run: store and publish, in fnet-analyze-io (the run file's kind needs fnet_sources_hdf5).
 inline std::vector<SourceKind> run_kinds() { return {run_file_kind(), csv_run_kind(), lammps_kind()}; }
 

@@ -1,5 +1,7 @@
 #include "server/sources/text_lines.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <array>
@@ -10,7 +12,29 @@ namespace fnet::sources {
 
 void TextLines::Close::operator()(gzFile_s* file) const { gzclose(file); }
 
-TextLines::TextLines(const std::filesystem::path& path) : path_(path), file_(gzopen(path.c_str(), "rb")) {
+namespace {
+
+// zlib reads from the descriptor's position: the file opened and moved to `offset`, or null.
+gzFile_s* open_at(const std::filesystem::path& path, std::uint64_t offset) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return nullptr;
+  if (offset > 0 && ::lseek(fd, static_cast<off_t>(offset), SEEK_SET) != static_cast<off_t>(offset)) {
+    ::close(fd);
+    return nullptr;
+  }
+  gzFile_s* file = gzdopen(fd, "rb");
+  if (!file) ::close(fd);
+  return file;
+}
+
+}  // namespace
+
+TextLines::TextLines(const std::filesystem::path& path, const Start& start)
+    : path_(path),
+      file_(open_at(path, start.offset)),
+      number_(start.line),
+      offset_(start.offset),
+      whole_lines_only_(start.whole_lines_only) {
   if (!file_) throw std::runtime_error(path.string() + ": cannot open");
   gzbuffer(file_.get(), 1 << 17);
 }
@@ -19,13 +43,16 @@ bool TextLines::next(std::string& line) {
   line.clear();
   std::array<char, 4096> buffer;
   bool read_any = false;
+  std::uint64_t bytes = 0;
   while (gzgets(file_.get(), buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
     read_any = true;
     const std::size_t length = std::strlen(buffer.data());
+    bytes += length;
     if (length > 0 && buffer[length - 1] == '\n') {
       line.append(buffer.data(), length - 1);
       if (!line.empty() && line.back() == '\r') line.pop_back();
       ++number_;
+      offset_ += bytes;
       return true;
     }
     line.append(buffer.data(), length);
@@ -35,9 +62,13 @@ bool TextLines::next(std::string& line) {
   if (code != Z_OK && code != Z_STREAM_END)
     throw std::runtime_error(path_.string() + ":" + std::to_string(number_ + 1) + ": " +
                              "compressed data cut short or corrupt (" + message + ")");
-  if (!read_any) return false;
+  if (!read_any || whole_lines_only_) {
+    line.clear();
+    return false;
+  }
   if (!line.empty() && line.back() == '\r') line.pop_back();
   ++number_;
+  offset_ += bytes;
   return true;
 }
 

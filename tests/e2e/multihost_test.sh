@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Three hosts, made here as network namespaces on one bridge: fnet-server on host a; on host b
 # fnet-analyze publish, then one half of an ensemble (fnet-simd --seeds 1-2), on host c the other
-# half (--seeds 3-4), all with deploy/cyclonedds-hosts.xml (unicast peers, no multicast) on DDS
+# half (--seeds 3-4), then on host b a LAMMPS run under mpirun -np 2 followed live by fnet-analyze
+# publish --follow (proto/lammps.md's cluster recipe), all with deploy/cyclonedds-hosts.xml (unicast peers, no multicast) on DDS
 # domain 82. The server must receive every frame of the publication and of the four realizations,
 # each announced in the one ensemble. Exit 77 (skipped) where network namespaces cannot be created.
 set -euo pipefail
@@ -88,3 +89,20 @@ sys.exit(0 if params["ensemble"] == "mh" and params["seed"] == int(sys.argv[1]) 
 PY
 done
 echo "ok: ensemble mh, seeds 1-2 from namespace $b and 3-4 from namespace $c, analyzed by fnet-server in namespace $a"
+
+# A LAMMPS run on host b under MPI, followed as it runs: proto/lammps.md's cluster recipe, its
+# mpi follow block run as written there on the node that sees the dumps.
+python3 "$src/tests/e2e/lammps_follow_test.py" input --source-dir "$src" --build-dir . --workdir "$work/lmp" --domain 82
+root=(); [ "$(id -u)" = 0 ] && root=(--allow-run-as-root --oversubscribe)
+block=$(python3 - "$src/proto/lammps.md" <<'PY'
+import re, sys
+blocks = re.findall(r"```sh\n(.*?)```", open(sys.argv[1]).read(), re.S)
+print(next(b for b in blocks if b.startswith("mpirun") and "--follow" in b))
+PY
+)
+block=${block/mpirun /mpirun ${root[*]} }
+block=${block/--run-id live-mpi/--run-id live-mpi --domain 82 --wait-for-reader 30}
+(cd "$work/lmp" && on_b env PATH="$(dirname "$analyze"):$PATH" bash -c "$block" > "$work/follow.out" 2> "$work/follow.err") ||
+  fail "the follow block on $b exited $?"
+analyzed live-mpi 27 || fail "the server did not analyze the 27 frames of the LAMMPS run followed on $b"
+echo "ok: LAMMPS under mpirun -np 2 in namespace $b, followed live, analyzed by fnet-server in namespace $a"

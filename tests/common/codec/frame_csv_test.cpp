@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "common/codec/run_csv.hpp"
+#include "tests/common/codec/csv_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet {
@@ -26,15 +27,7 @@ using fnet::testing::TempDir;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-template <class Read>
-std::string csv_error(Read read) {
-  try {
-    read();
-  } catch (const CsvError& e) {
-    return e.what();
-  }
-  return "<accepted>";
-}
+using fnet::testing::csv_error;
 
 // path:line, as the reader prefixes messages about one line.
 std::string at(const std::filesystem::path& file, int line) { return file.string() + ":" + std::to_string(line) + ":"; }

@@ -18,6 +18,7 @@
 #include "common/topology/contact_force.hpp"
 #include "common/topology/force_network.hpp"
 #include "common/topology/persistence.hpp"
+#include "tests/common/codec/csv_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet {
@@ -27,15 +28,7 @@ using fnet::testing::TempDir;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-template <class Read>
-std::string csv_error(Read read) {
-  try {
-    read();
-  } catch (const CsvError& e) {
-    return e.what();
-  }
-  return "<accepted>";
-}
+using fnet::testing::csv_error;
 
 std::string number(double v) {
   char buffer[32];

@@ -12,6 +12,7 @@ line) and failing when the normal force is read as the whole pair force. Exit st
 check holds, 1 otherwise.
 """
 import argparse
+import json
 import math
 import os
 import re
@@ -45,10 +46,7 @@ unfix squeeze
 run 6000 post no
 compute fnet_contacts all contact/atom
 compute fnet_pairs_touching all reduce sum c_fnet_contacts
-compute fnet_r all property/atom radius
-variable fnet_disk atom PI*c_fnet_r*c_fnet_r
-compute fnet_disks all reduce sum v_fnet_disk
-variable fnet_rho equal c_fnet_disks/vol
+{rho}
 fix fnet_numbers all ave/time 1000 1 1000 c_fnet_pairs_touching v_fnet_rho file lammps_numbers.txt format " %.12g"
 {doc}
 dump fnet_test_forces all custom 1000 forces.*.txt id fx fy
@@ -97,7 +95,8 @@ def stored(path):
 def run_style(style, args, doc, work):
     print(f"== pair_style {style}")
     os.makedirs(work)
-    text = BASE.format(seed=4711, pair=PAIRS[style], doc="\n".join(blocks(doc, "lammps")))
+    text = BASE.format(seed=4711, pair=PAIRS[style], doc="\n".join(blocks(doc, "lammps")),
+                       rho=re.findall(r"```lammps rho\n(.*?)```", doc, re.S)[0])
     open(os.path.join(work, "in.fnet"), "w").write(text)
     r = subprocess.run([args.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
                        capture_output=True, text=True)
@@ -105,7 +104,8 @@ def run_style(style, args, doc, work):
         check(False, f"lmp ran ({r.returncode}): {open(os.path.join(work, 'log.lammps')).read()[-2000:]}")
         return
     env = dict(os.environ, PATH=os.path.dirname(args.fnet_analyze) + os.pathsep + os.environ["PATH"])
-    for line in blocks(doc, "sh"):
+    # The blocks that follow a run live are tests/e2e/lammps_follow_test.py's, with a server.
+    for line in (b for b in blocks(doc, "sh") if "--follow" not in b):
         r = subprocess.run(line, shell=True, cwd=work, env=env, capture_output=True, text=True)
         check(r.returncode == 0, f"{line.strip()}: exit {r.returncode} {r.stderr.strip()}")
     # LAMMPS's numbers: step, touching pairs x 2, rho.
@@ -162,6 +162,40 @@ def run_style(style, args, doc, work):
         check(off < 1e-3 * mean, f"step {step}: pair vectors add up to LAMMPS's per-atom forces within {off:.2e}")
         pushing = sum(1 for v in want.values() if v[0] > 0)
         check(abs(f["z"] - 2 * pushing / f["grains"]) < 1e-12, f"step {step}: Z {f['z']:.6f} = 2 x {pushing} / {f['grains']}")
+    # --rho log: ρ as the log prints it, near fnet's own.
+    printed, header = {}, None
+    for l in open(os.path.join(work, "log.lammps")):
+        w = l.split()
+        if w[:1] == ["Step"]:
+            header = w
+        elif l.startswith("Loop time"):
+            header = None
+        elif header and "v_fnet_rho" in header and len(w) == len(header):
+            printed.setdefault(int(w[0]), float(w[header.index("v_fnet_rho")]))
+    from_log = stored(os.path.join(work, "stores", "packing-rho.h5"))
+    check([g["rho"] for g in from_log] == [printed.get(g["step"]) for g in from_log],
+          f"--rho log: the log's values {[printed.get(g['step']) for g in from_log]}")
+    # (the dump's radii have 6 digits: fnet's own rho is as close as that)
+    check(all(abs(g["rho"] - f["rho"]) < 1e-5 * f["rho"] for f, g in zip(frames, from_log)),
+          "--rho log: fnet's own rho of the periodic box within the dump's digits")
+    # diagram and explain read the frames store stored: the diagram's vertices are the grains, its
+    # edges the contacts with F_n > 0, the same from the file and from the pattern; explain the same
+    # from two files and from two TIMESTEPs of the pattern, its grains with positions.
+    by_step = {f["step"]: f for f in frames}
+    one = json.load(open(os.path.join(work, "diagram-15000.json")))
+    check(one == json.load(open(os.path.join(work, "diagram-15000-of-run.json"))),
+          "diagram: one file's frame = the pattern's frame of its TIMESTEP")
+    f15 = by_step.get(15000)
+    if f15 is not None:
+        pushing = int(sum(1 for fo in f15["forces"] if fo[0] > 0))
+        check(one["vertices"] == f15["grains"] and one["edges"] == pushing,
+              f"diagram: {one['vertices']} vertices, {one['edges']} edges; stored {f15['grains']} grains, {pushing} pushing")
+    ex = json.load(open(os.path.join(work, "explain-14000-17000.json")))
+    ex_files = json.load(open(os.path.join(work, "explain-files.json")))
+    check(ex["value"] == ex_files["value"] and ex["explain"] == ex_files["explain"] and len(ex["explain"]) == 3,
+          f"explain: the same from two TIMESTEPs and from two files ({ex['value']})")
+    check(all("positions" in t["a"]["birth_simplex"] for t in ex["explain"] if t["a"]),
+          "explain: the grains have positions")
     # The normal force read as the whole pair force (the tangential columns forgotten): the balance
     # fails, naming a frame.
     wrong = "--columns 'fx=c_fnet_force[1],fy=c_fnet_force[2]'"

@@ -1,17 +1,22 @@
 // LAMMPS dumps read as a run, on small hand-written dumps whose frames are known: one file of many
 // snapshots, a file per snapshot by LAMMPS's * pattern, gzip, columns in any order or mapped by
-// --columns, wall atoms; every bad dump named by file and line; the force balance.
+// --columns, wall atoms; every bad dump named by file and line; the force balance; dumps followed
+// while they are written.
 #include <zlib.h>
 
+#include <chrono>
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <boost/program_options.hpp>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "server/sources/lammps_dump.hpp"
 #include "server/sources/run_source.hpp"
 #include "server/sources/source_kinds.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -24,7 +29,7 @@ namespace po = boost::program_options;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-std::vector<RunFrame> read_run(const fs::path& dir, std::vector<std::string> args) {
+std::unique_ptr<FrameSource> open_source(const fs::path& dir, std::vector<std::string> args) {
   args.insert(args.end(), {"--run-id", "lmp"});
   for (std::string& a : args) a = a.starts_with("@") ? (dir / a.substr(1)).string() : a;
   const std::vector<SourceKind> kinds = run_kinds();
@@ -33,7 +38,11 @@ std::vector<RunFrame> read_run(const fs::path& dir, std::vector<std::string> arg
   po::variables_map vm;
   po::store(po::command_line_parser(args).options(options).run(), vm);
   po::notify(vm);
-  const auto source = open_run(kinds, vm);
+  return open_run(kinds, vm);
+}
+
+std::vector<RunFrame> read_run(const fs::path& dir, const std::vector<std::string>& args) {
+  const auto source = open_source(dir, args);
   std::vector<RunFrame> frames;
   while (auto f = source->next()) frames.push_back(std::move(*f));
   return frames;
@@ -290,6 +299,153 @@ TEST(LammpsSource, ForceBalanceCatchesAColumnReadAsTheWrongQuantity) {
                     HasSubstr("worst: atom id")));
   EXPECT_THAT(what_of(dir.path(), with("i=i,j=j,fn=fnx,ft=fty")),
               HasSubstr("--check-balance: the force balance needs"));
+}
+
+void append(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::app) << text; }
+
+// A dump written a byte at a time: each snapshot is read once its last row's newline is there, not
+// a byte before (a row cut inside a number has the right count of values), and read as the whole
+// file reads it.
+TEST(LammpsFollow, ASnapshotIsReadOnceWholeAndNotBefore) {
+  testing::TempDir dir;
+  const std::string first = atoms(100), text = first + atoms(200, {40, 30, 20, 10});
+  const fs::path path = dir.path() / "atoms.txt";
+  dir.write("atoms.txt", "");
+  DumpTail tail(path, DumpKind::atoms);
+  std::vector<DumpSnapshot> read;
+  for (std::size_t cut = 1; cut <= text.size(); ++cut) {
+    append(path, text.substr(cut - 1, 1));
+    std::vector<DumpSnapshot> got = tail.read_new();
+    ASSERT_EQ(got.size(), cut == first.size() || cut == text.size() ? 1u : 0u) << "after " << cut << " bytes";
+    for (DumpSnapshot& s : got) read.push_back(std::move(s));
+  }
+  const std::vector<DumpSnapshot> whole = read_dump(path, DumpKind::atoms);
+  ASSERT_EQ(read.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(read[k].timestep, whole[k].timestep);
+    EXPECT_EQ(read[k].line, whole[k].line);
+    EXPECT_EQ(read[k].values, whole[k].values);
+  }
+  EXPECT_NO_THROW(tail.require_read());
+}
+
+// Frames while the dumps are written, a file per snapshot: each once both its snapshots are whole
+// (a pair dump half-written holds its frame back), until the log says the run finished.
+TEST(LammpsFollow, FramesAsTheyAreWrittenUntilTheLogSaysTheRunFinished) {
+  using namespace std::chrono_literals;
+  testing::TempDir dir;
+  const std::string p100 = pairs(100);
+  std::thread writer([&] {
+    std::this_thread::sleep_for(100ms);
+    dir.write("atoms.100.txt", atoms(100));
+    dir.write("pairs.100.txt", p100.substr(0, p100.size() - 20));
+    std::this_thread::sleep_for(300ms);
+    append(dir.path() / "pairs.100.txt", p100.substr(p100.size() - 20));
+    std::this_thread::sleep_for(300ms);
+    dir.write("atoms.200.txt", atoms(200, {20, 40, 10, 30}));
+    dir.write("pairs.200.txt", pairs(200, 2));
+    dir.write("log.lammps", "Loop time of 1 on 1 procs\n\nTotal wall time: 0:00:01\n");
+  });
+  const auto started = std::chrono::steady_clock::now();
+  const auto source = open_source(dir.path(), {"--lammps-atoms", "@atoms.*.txt", "--lammps-pairs", "@pairs.*.txt",
+                                               "--wall-types", "3", "--follow", "--lammps-log", "@log.lammps"});
+  EXPECT_GE(std::chrono::steady_clock::now() - started, 400ms) << "the first frame before its pair dump was whole";
+  EXPECT_EQ(source->announcement().particles, 3u);
+  EXPECT_EQ(source->announcement().frames, 0u);
+  std::vector<RunFrame> frames;
+  while (auto f = source->next()) frames.push_back(std::move(*f));
+  writer.join();
+  ASSERT_EQ(frames.size(), 2u);
+  expect_known_frame(frames[0], 100, 1);
+  expect_known_frame(frames[1], 200, 2);
+  EXPECT_LT(std::chrono::steady_clock::now() - started, 10s) << "the end the log says was not seen";
+}
+
+// A run that stopped while writing: after the idle timeout, every whole frame, then the snapshot
+// cut short named by its file and line.
+TEST(LammpsFollow, ASnapshotLeftCutShortIsNamedAfterTheFramesBeforeIt) {
+  testing::TempDir dir;
+  const std::string a200 = atoms(200);
+  dir.write("atoms.txt", atoms(100) + a200.substr(0, a200.size() - 30));
+  dir.write("pairs.txt", pairs(100) + pairs(200));
+  const auto source = open_source(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt",
+                                               "--wall-types", "3", "--follow", "--idle-timeout", "0.3"});
+  const auto first = source->next();
+  ASSERT_TRUE(first);
+  expect_known_frame(*first, 100, 1);
+  try {
+    source->next();
+    ADD_FAILURE() << "no error for the snapshot cut short";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("atoms.txt:"), HasSubstr("cut short")));
+  }
+}
+
+TEST(LammpsFollow, UsageErrors) {
+  testing::TempDir dir;
+  dir.write("atoms.txt", atoms(100));
+  dir.write("pairs.txt", pairs(100));
+  EXPECT_THAT(
+      what_of(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--idle-timeout", "5"}),
+      HasSubstr("--idle-timeout needs --follow"));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@atoms.txt.gz", "--lammps-pairs", "@pairs.txt", "--follow"}),
+              HasSubstr("plain-text"));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--follow",
+                                   "--idle-timeout", "soon"}),
+              HasSubstr("--idle-timeout"));
+  // --rho log: names the log and the column; the log is read when the run opens.
+  const std::vector<std::string> base{"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt"};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return what_of(dir.path(), args);
+  };
+  EXPECT_THAT(with({"--rho", "log:log.lammps"}), HasSubstr("is not log:PATH:COLUMN or column:NAME"));
+  EXPECT_THAT(with({"--rho", "@log.lammps:v_rho"}), HasSubstr("is not log:PATH:COLUMN or column:NAME"));
+  dir.write("log.lammps", "Step Temp\n0 1\nLoop time of 1\n");
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho"}),
+              HasSubstr("no thermo output names v_rho"));
+  dir.write("log.lammps", "Step v_rho\n0 0.8\nLoop time of 1\n");
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho"}),
+              AllOf(HasSubstr("atoms.txt:1: TIMESTEP 100 has no thermo row"), HasSubstr("log.lammps:v_rho")));
+  EXPECT_THAT(with({"--rho", "log:" + (dir.path() / "log.lammps").string() + ":v_rho", "--follow"}),
+              HasSubstr("does not go with --follow"));
+}
+
+// --rho column:NAME: a per-atom column of one value per snapshot is the frame's ρ, followed or not;
+// a column that varies from row to row is refused, naming the row.
+TEST(LammpsSource, RhoFromAColumnOfOneValue) {
+  testing::TempDir dir;
+  const auto with_rho = [](std::string text, const std::vector<std::string>& values) {
+    text.replace(text.find("vx\n"), 3, "vx v_rho\n");
+    std::size_t at = text.find("vx v_rho\n") + 9;
+    for (const std::string& v : values) {
+      at = text.find('\n', at);
+      text.insert(at, " " + v);
+      at += v.size() + 2;
+    }
+    return text;
+  };
+  dir.write("atoms.txt", with_rho(atoms(100), {"0.625", "0.625", "0.625", "0.625"}) +
+                             with_rho(atoms(200), {"0.75", "0.75", "0.75", "0.75"}));
+  dir.write("pairs.txt", pairs(100) + pairs(200, 2));
+  for (const bool follow : {false, true}) {
+    std::vector<std::string> args{"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt",
+                                  "--wall-types",   "3",          "--rho",          "column:v_rho"};
+    if (follow) args.insert(args.end(), {"--follow", "--idle-timeout", "0.2"});
+    const auto frames = read_run(dir.path(), args);
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[0].header.rho, 0.625);
+    EXPECT_EQ(frames[1].header.rho, 0.75);
+  }
+  dir.write("varies.txt", with_rho(atoms(100), {"0.625", "0.625", "0.5", "0.625"}));
+  dir.write("pairs100.txt", pairs(100));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@varies.txt", "--lammps-pairs", "@pairs100.txt", "--rho",
+                                   "column:v_rho", "--wall-types", "3"}),
+              AllOf(HasSubstr("varies.txt:12:"), HasSubstr("not one finite value")));
+  EXPECT_THAT(what_of(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--rho",
+                                   "column:v_phi", "--wall-types", "3"}),
+              HasSubstr("no column v_phi"));
 }
 
 }  // namespace

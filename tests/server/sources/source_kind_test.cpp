@@ -87,8 +87,12 @@ std::string usage_error(const std::vector<std::string>& args, bool run = false) 
 TEST(SourceKind, UsageLinesListEachKindsFlags) {
   EXPECT_EQ(run_usage(run_kinds()),
             "(--run-file F | --csv-dir DIR --run-id R | --lammps-atoms PATTERN --lammps-pairs PATTERN "
-            "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] --run-id R)");
-  EXPECT_EQ(source_usage(frame_kinds()), "--contacts C.csv [--particles P.csv]");
+            "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] "
+            "[--follow] "
+            "[--idle-timeout SECONDS] [--lammps-log LOG] --run-id R)");
+  EXPECT_EQ(source_usage(frame_kinds()),
+            "(--contacts C.csv [--particles P.csv] | --lammps-atoms FILE --lammps-pairs FILE [--wall-types T,...] "
+            "[--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] [--timestep N])");
   EXPECT_EQ(run_usage(kKinds), "(--recording F [--follow] | --atoms PATTERN --pairs PATTERN [--follow] --run-id R)");
 }
 
@@ -116,8 +120,12 @@ TEST(SourceKind, AKindsFlagsAreCheckedBeforeItOpens) {
 }
 
 TEST(SourceKind, ASingleKindsFirstFlagIsRequired) {
-  const std::vector<SourceKind> frames = frame_kinds();
+  const std::vector<SourceKind> frames{frame_files_kind()};
   EXPECT_THROW(parse(frames, {"--particles", "p.csv"}, false), po::required_option);
+  // Unless the kind marks it not required: a command with inputs of its own beside it.
+  std::vector<SourceKind> beside{frame_files_kind()};
+  beside.front().flags.front().required = false;
+  EXPECT_NO_THROW(parse(beside, {"--particles", "p.csv"}, false));
 }
 
 TEST(SourceKind, TheRunIdGivenNamesAnInputThatAnnouncesNone) {
