@@ -31,6 +31,8 @@ std::size_t implied_particle_count(const std::vector<Contact>& contacts) {
 }
 
 void validate(const Frame& frame) {
+  if (frame.dimension != 2 && frame.dimension != 3)
+    reject(frame, "dimension " + std::to_string(frame.dimension) + " is neither 2 nor 3");
   if (frame.particle_count > std::size_t{UINT32_MAX}) {
     // Without a particle table the count came from a contact: name it.
     for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
@@ -49,12 +51,15 @@ void validate(const Frame& frame) {
     const auto where = [&] {
       std::ostringstream s;
       s.precision(17);
-      s << "particle " << k << " (x=" << p.x << ", y=" << p.y << ", r=" << p.r << ")";
+      s << "particle " << k << " (x=" << p.x << ", y=" << p.y;
+      if (frame.dimension == 3 || p.z != 0) s << ", z=" << p.z;
+      s << ", r=" << p.r << ")";
       return s.str();
     };
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.r))
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.r))
       reject(frame, where() + ": non-finite value");
     if (p.r < 0) reject(frame, where() + ": negative radius");
+    if (frame.dimension == 2 && p.z != 0) reject(frame, where() + ": z is not 0 in a 2D frame");
   }
 
   const auto n = static_cast<std::int64_t>(frame.particle_count);

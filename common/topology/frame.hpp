@@ -9,8 +9,10 @@
 
 namespace fnet {
 
+// z is last so that {x, y, r} is a disk of a 2D frame; it is 0 there.
 struct Particle {
   double x = 0, y = 0, r = 0;
+  double z = 0;
 };
 
 // fn is signed as the simulator reports it (a damped spring may be slightly tensile);
@@ -22,6 +24,7 @@ struct Contact {
 
 struct Frame {
   std::string label;                // names the frame in every message ("frame 12", a file name)
+  int dimension = 2;                // 2: disks in the xy plane (every z is 0); 3: spheres
   std::size_t particle_count = 0;   // vertices of the network, rattlers included
   std::vector<Particle> particles;  // empty, or exactly particle_count entries
   std::vector<Contact> contacts;
@@ -33,8 +36,9 @@ class FrameError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Checks everything the analysis relies on: finite values, non-negative radii, indices in
-// [0, particle_count), no self-contacts, no pair listed twice (in either order).
+// Checks everything the analysis relies on: dimension 2 or 3 (every z is 0 in 2D), finite values,
+// non-negative radii, indices in [0, particle_count), no self-contacts, no pair listed twice (in
+// either order).
 // A frame with no contacts is valid. Throws FrameError on the first problem found.
 void validate(const Frame& frame);
 

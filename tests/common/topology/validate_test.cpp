@@ -83,6 +83,35 @@ TEST(Validate, RejectsNonFinitePosition) {
   }
 }
 
+TEST(Validate, AThreeDimensionalFrameIsValidAndItsZIsChecked) {
+  Frame f = valid_frame();
+  f.dimension = 3;
+  f.particles[0].z = 1.0;
+  f.particles[3].z = -2.5;
+  EXPECT_NO_THROW(validate(f));
+  for (double bad : {kNaN, kInf, -kInf}) {
+    f.particles[3].z = bad;
+    EXPECT_THAT(rejection(f),
+                AllOf(StartsWith("frame 12: "), HasSubstr("particle 3"), HasSubstr("z="), HasSubstr("non-finite")));
+  }
+}
+
+TEST(Validate, RejectsZInATwoDimensionalFrame) {
+  Frame f = valid_frame();
+  f.particles[2].z = 0.125;
+  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("particle 2 (x=0, y=1, z=0.125, r=0.5)"),
+                                  HasSubstr("z is not 0 in a 2D frame")));
+}
+
+TEST(Validate, RejectsADimensionOtherThanTwoOrThree) {
+  for (int bad : {0, 1, 4, -3}) {
+    Frame f = valid_frame();
+    f.dimension = bad;
+    EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("dimension " + std::to_string(bad)),
+                                    HasSubstr("neither 2 nor 3")));
+  }
+}
+
 TEST(Validate, RejectsNonFiniteRadius) {
   for (double bad : {kNaN, kInf}) {
     Frame f = valid_frame();
