@@ -2,8 +2,8 @@
 """proto/lammps.md's live follow, run as written: a real LAMMPS compression followed by
 `fnet-analyze publish --follow` into a real fnet-server on loopback DDS.
 
-Writes a small 2D compression (196 polydisperse disks, a periodic box squeezed by fix deform, then
-relaxed) with the page's dump lines every 500 steps, starts fnet-server, runs the page's follow
+Writes a small 2D compression (tests/support/lammps_inputs.py: 196 polydisperse disks, a periodic
+box squeezed by fix deform, then relaxed) with the page's dump lines every 500 steps, starts fnet-server, runs the page's follow
 block for the case (`serial`: lmp, one file per snapshot; `mpi`: mpirun -np 2 lmp, one file of
 every snapshot), and checks that frames reached the server while LAMMPS ran, that every frame
 arrived, and that every one of the twelve served series equals, value for value, the offline
@@ -20,28 +20,12 @@ import subprocess
 import sys
 import time
 
-INPUT = """dimension 2
-boundary p p p
-atom_style sphere
-comm_modify vel yes
-lattice sq 0.694
-region box block 0 16.8 0 16.8 -0.5 0.5 units box
-create_box 1 box
-create_atoms 1 box
-velocity all create 0.5 4711 loop geom
-variable d atom 0.8+0.4*random(0,1,4711)
-set group all diameter v_d
-set group all density 1.0
-pair_style granular
-pair_coeff * * hooke 2000.0 50.0 tangential linear_history 1000.0 1.0 0.5
-neighbor 0.3 bin
-timestep 0.001
-fix move all nve/sphere
-fix flat all enforce2d
-fix calm all viscous 2.0
-{doc}
-fix squeeze all deform 1 x final 0 13.4 y final 0 13.4 remap x units box
-run 10000 post no
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import lammps_inputs  # noqa: E402
+from lammps_doc import blocks  # noqa: E402
+
+# After the disks: the page's lines, then squeezed and relaxed.
+PROTOCOL = "{doc}\n" + lammps_inputs.DISKS_SQUEEZE + """run 10000 post no
 unfix squeeze
 run 3000 post no
 """
@@ -55,10 +39,6 @@ def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what, flush=True)
     if not ok:
         failures.append(what)
-
-
-def blocks(doc, lang):
-    return re.findall(r"```" + lang + r"\n(.*?)```", doc, re.S)
 
 
 def follow_block(doc, case):
@@ -90,7 +70,7 @@ def main():
         lines = lines.replace("atoms.*.txt", "atoms.txt").replace("pairs.*.txt", "pairs.txt")
         if os.geteuid() == 0:
             block = block.replace("mpirun ", "mpirun --allow-run-as-root --oversubscribe ", 1)
-    open(os.path.join(work, "in.fnet"), "w").write(INPUT.format(doc=lines))
+    open(os.path.join(work, "in.fnet"), "w").write(lammps_inputs.disks() + PROTOCOL.format(doc=lines.rstrip("\n")))
     if a.case == "input":
         return 0
     sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
