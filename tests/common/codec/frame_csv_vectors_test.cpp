@@ -314,6 +314,13 @@ TEST(FrameCsvVectors, SplitIsAlongTheLineOfCentresFromJToI) {
   const ContactForceParts pure = split_contact_force({1, 1, 0}, {std::sqrt(0.5), std::sqrt(0.5), 0});
   EXPECT_NEAR(pure.fn, 1.0, 1e-15);
   EXPECT_EQ(pure.ft, 0.0) << "rounding of the split is not a tangential force";
+  // In 3D: the line of centres (1, 2, 2)/3 and the force (3, 0, 3): F·n = 3, F - 3n = (2, -2, 1).
+  const ContactForceParts spatial = split_contact_force({1, 2, 2}, {3, 0, 3});
+  EXPECT_NEAR(spatial.fn, 3.0, 4e-15);
+  EXPECT_NEAR(spatial.ft, 3.0, 4e-15);
+  const ContactForceParts diagonal = split_contact_force({-1, -1, -1}, {2, 2, 2});
+  EXPECT_NEAR(diagonal.fn, -2 * std::sqrt(3.0), 1e-14);
+  EXPECT_EQ(diagonal.ft, 0.0) << "rounding of the split is not a tangential force, in 3D too";
   const ContactForceParts together = split_contact_force({0, 0, 0}, {3, 4, 0});
   EXPECT_EQ(together.fn, 0.0);
   EXPECT_EQ(together.ft, 5.0);
