@@ -219,6 +219,24 @@ TEST(Lammps3d, SimpleCubicInAPeriodicBox) {
             HasSubstr(" " + std::to_string(along_z->j) + " at ")));
 }
 
+// Followed while written, a run's dimension is its first frame's (or --dimension's): LAMMPS writes
+// its log behind the dumps, so the log's dimension command is not waited for.
+TEST(Lammps3d, AFollowedRunsDimensionIsItsFirstFrames) {
+  testing::TempDir dir;
+  const std::vector<Sphere> spheres = simple_cubic();
+  const auto contacts =
+      pushing_pairs(spheres, kCubicBox, [](std::size_t) { return 1.0; }, [](std::size_t) { return 0.0; });
+  dir.write("atoms.txt", atoms_dump(1, kCubicBox, spheres) + atoms_dump(2, kCubicBox, spheres));
+  dir.write("pairs.txt", pairs_dump(1, kCubicBox, contacts) + pairs_dump(2, kCubicBox, contacts));
+  dir.write("log.lammps", "dimension 2\n");
+  const auto frames = testing::read_run_frames(
+      dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--follow", "--idle-timeout", "0.2",
+                   "--lammps-log", "@log.lammps"});
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[1].frame.dimension, 3);
+  EXPECT_NEAR(frames[1].header.rho, std::numbers::pi / 6, 1e-15);
+}
+
 // FCC of spheres of diameter 1 (cube side a = √2), 2 × 2 × 2 cells periodic in x and y, between a
 // layer of wall atoms under the grains and one over them whose inner surfaces are a/4 from the
 // outer layers of grains: the region is then 2a × 2a × 2a, as the periodic crystal's.
