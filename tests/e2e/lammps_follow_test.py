@@ -3,7 +3,8 @@
 `fnet-analyze publish --follow` into a real fnet-server on loopback DDS.
 
 Writes a small 2D compression (tests/support/lammps_inputs.py: 196 polydisperse disks, a periodic
-box squeezed by fix deform, then relaxed) with the page's dump lines every 500 steps, starts fnet-server, runs the page's follow
+box squeezed by fix deform, then relaxed), or with --dimension 3 a 3D one (343 spheres), with the
+page's dump lines (its 3D lines in 3D) every 500 steps, starts fnet-server, runs the page's follow
 block for the case (`serial`: lmp, one file per snapshot; `mpi`: mpirun -np 2 lmp, one file of
 every snapshot), and checks that frames reached the server while LAMMPS ran, that every frame
 arrived, and that every one of the twelve served series equals, value for value, the offline
@@ -29,7 +30,7 @@ PROTOCOL = "{doc}\n" + lammps_inputs.DISKS_SQUEEZE + """run 10000 post no
 unfix squeeze
 run 3000 post no
 """
-FRAMES = 27  # steps 0, 500, ..., 13000
+FRAMES = {2: 27, 3: 25}  # steps 0, 500, ..., 13000 (2D) or 12000 (3D)
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
 
 failures = []
@@ -53,6 +54,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("case", choices=("serial", "mpi", "input"),
                     help="input: only write the mpi case's in.fnet into the workdir (for another test)")
+    ap.add_argument("--dimension", type=int, choices=(2, 3), default=2,
+                    help="3: the spheres of tests/support/lammps_inputs.py with the page's 3D lines")
     ap.add_argument("--source-dir", required=True)
     ap.add_argument("--build-dir", required=True)
     ap.add_argument("--workdir", required=True)
@@ -64,13 +67,16 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     doc = open(os.path.join(a.source_dir, "proto", "lammps.md")).read()
-    lines = blocks(doc, "lammps")[0].replace(" 1000 ", " 500 ")
+    lines = blocks(doc, "lammps" if a.dimension == 2 else "lammps 3d")[0].replace(" 1000 ", " 500 ")
     block = follow_block(doc, "serial" if a.case == "serial" else "mpi")
     if a.case != "serial":  # the page's mpi block reads one file of every snapshot
         lines = lines.replace("atoms.*.txt", "atoms.txt").replace("pairs.*.txt", "pairs.txt")
         if os.geteuid() == 0:
             block = block.replace("mpirun ", "mpirun --allow-run-as-root --oversubscribe ", 1)
-    open(os.path.join(work, "in.fnet"), "w").write(lammps_inputs.disks() + PROTOCOL.format(doc=lines.rstrip("\n")))
+    text = lammps_inputs.disks() + PROTOCOL.format(doc=lines.rstrip("\n")) if a.dimension == 2 else \
+        lammps_inputs.spheres(lines)
+    open(os.path.join(work, "in.fnet"), "w").write(text)
+    frames = FRAMES[a.dimension]
     if a.case == "input":
         return 0
     sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
@@ -110,15 +116,15 @@ def main():
                 time.sleep(0.05)
             check(follow.poll() == 0, f"the follow block ran: exit {follow.poll()} "
                   f"({open(os.path.join(work, 'follow.log')).read()[-600:]})")
-            check(0 < seen_live < FRAMES, f"{seen_live} frames analyzed before LAMMPS finished")
+            check(0 < seen_live < frames, f"{seen_live} frames analyzed before LAMMPS finished")
             deadline = time.monotonic() + 20
             summary = None
             while time.monotonic() < deadline:
                 summary = next((r for r in c.runs() if r["run"] == run_id), None)
-                if summary and summary["frames"] + summary["rejected"] >= FRAMES and summary["pending"] == 0:
+                if summary and summary["frames"] + summary["rejected"] >= frames and summary["pending"] == 0:
                     break
                 time.sleep(0.1)
-            check(summary is not None and summary["frames"] == FRAMES and summary["rejected"] == 0,
+            check(summary is not None and summary["frames"] == frames and summary["rejected"] == 0,
                   f"every frame analyzed: {summary}")
 
             # The offline analysis of the same dumps, after the run.
@@ -138,7 +144,7 @@ def main():
                             check(served["rho"] == [float(v) for v in offline.rho], f"{what}: the same rho")
                             same = all((v is None and math.isnan(w)) or v == w
                                        for v, w in zip(served["value"], [float(x) for x in offline.value]))
-                            check(same and len(served["value"]) == FRAMES, f"{what}: the same values, bit for bit")
+                            check(same and len(served["value"]) == frames, f"{what}: the same values, bit for bit")
     finally:
         for p in reversed(started):
             if p.poll() is None:
