@@ -8,8 +8,9 @@ page's dump lines (its 3D lines in 3D) every 500 steps, starts fnet-server, runs
 block for the case (`serial`: lmp, one file per snapshot; `mpi`: mpirun -np 2 lmp, one file of
 every snapshot), and checks that frames reached the server while LAMMPS ran, that every frame
 arrived, and that every one of the twelve served series equals, value for value, the offline
-`fnet-analyze store` of the same dumps. Every process it starts is stopped. Exit 0 when every
-check holds, 1 otherwise.
+`fnet-analyze store` of the same dumps, and so does every network the server kept (particles,
+their z in 3D, the run's dimension, contacts and forces). Every process it starts is stopped. Exit
+0 when every check holds, 1 otherwise.
 """
 import argparse
 import math
@@ -20,6 +21,8 @@ import signal
 import subprocess
 import sys
 import time
+
+import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 import lammps_inputs  # noqa: E402
@@ -76,7 +79,7 @@ def main():
     text = lammps_inputs.disks() + PROTOCOL.format(doc=lines.rstrip("\n")) if a.dimension == 2 else \
         lammps_inputs.spheres(lines)
     open(os.path.join(work, "in.fnet"), "w").write(text)
-    frames = FRAMES[a.dimension]
+    frames, a_dimension = FRAMES[a.dimension], a.dimension
     if a.case == "input":
         return 0
     sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
@@ -145,6 +148,17 @@ def main():
                             same = all((v is None and math.isnan(w)) or v == w
                                        for v, w in zip(served["value"], [float(x) for x in offline.value]))
                             check(same and len(served["value"]) == frames, f"{what}: the same values, bit for bit")
+                # The networks the server kept, as they came over DDS: the offline ones, with the
+                # run's dimension and its grains' z.
+                with fnet.store.open_store(os.path.join(work, "data", run_id + ".h5")) as live:
+                    kept = [(live.network(k), store.network(k)) for k in range(frames)]
+                same = all(a is not None and b is not None and a.dimension == b.dimension == a_dimension
+                           and np.array_equal(a.particles, b.particles) and np.array_equal(a.particle_z, b.particle_z)
+                           and np.array_equal(a.contact_pairs, b.contact_pairs)
+                           and np.array_equal(a.contact_forces, b.contact_forces) for a, b in kept)
+                lifted = sum(1 for a, _ in kept if a is not None and np.any(a.particle_z != 0))
+                check(same and lifted == (frames if a_dimension == 3 else 0),
+                      f"the served networks are the offline ones, {a_dimension}D, {lifted} frames with z")
     finally:
         for p in reversed(started):
             if p.poll() is None:

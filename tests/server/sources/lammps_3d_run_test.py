@@ -4,7 +4,8 @@
 Debian's lmp compresses 343 polydisperse frictional spheres in a periodic box and lets them come to
 rest (tests/support/lammps_inputs.py), with the page's blocks marked `lammps 3d`; the page's `sh 3d`
 blocks then run in the dumps' folder (fnet-analyze store, diagram, explain). Checked:
-- the run is read as 3D (the dimension its log names);
+- the run is read as 3D (the dimension its log names), each frame stored 3D with its grains' x, y,
+  z and r as dumped;
 - each frame's contacts against LAMMPS's compute contact/atom, and the dumped pairs against the
   spheres that touch by their dumped positions and radii (every pair dumped touches; every pair
   overlapping by more than 1e-3 of its radii's sum is dumped);
@@ -133,6 +134,16 @@ def stored(path):
                 json.loads(announcement["config_json"])["source"])
 
 
+def stored_grains(path):
+    """Per frame of a store: its dimension and its grains' x, y, z, r as stored."""
+    with h5py.File(path, "r") as f:
+        out = []
+        for k, (p0, p1, _, _) in enumerate(f["network_offsets"][:]):
+            xyr, z = f["particles"][p0:p1], f["particle_z"][p0:p1]
+            out.append((int(f["dimension"][k]), np.column_stack([xyr[:, 0], xyr[:, 1], z, xyr[:, 2]])))
+        return out
+
+
 def main():
     a = test_arguments(__doc__)
     work = os.path.abspath(a.workdir)
@@ -160,8 +171,11 @@ def main():
     check(steps == want_steps, f"frames stored: {steps}")
     check(source["dimension"] == 3, f"the run read as 3D: {source}")
     worst_rho = 0.0
-    for step, rho_k, z_k in zip(steps, rho, z):
+    grains = stored_grains(os.path.join(work, "stores", "spheres.h5"))
+    for step, rho_k, z_k, (dimension, xyzr) in zip(steps, rho, z, grains):
         f = Frame(work, step)
+        check(dimension == 3 and np.array_equal(xyzr, np.column_stack([f.x, f.r])),
+              f"step {step}: stored 3D, each grain's x, y, z, r as dumped")
         contacts, rho_lammps = lammps[step]
         pairs = f.pairs()
         check(len(pairs) == len(f.i) == contacts, f"step {step}: {len(pairs)} pairs, contact/atom {contacts:.0f}")

@@ -186,7 +186,9 @@ def run_style(style, args, doc, work):
             and np.array_equal(g["forces"], f["forces"]) for f, g in zip(frames, with_z))
         check(same, "a z column of one value: the same frames as without it")
         dims = [source_config(os.path.join(work, "stores", f"{run}.h5"))["dimension"] for run in ("packing", "packing-z")]
-        check(dims == [2, 2], f"the runs' dimension, without and with z: {dims}")
+        with h5py.File(os.path.join(work, "stores", "packing-z.h5"), "r") as h:
+            flat = np.all(h["dimension"][:] == 2) and not np.any(h["particle_z"][:])
+        check(dims == [2, 2] and flat, f"the runs' dimension, without and with z: {dims}; every frame 2D, z = 0")
     # The normal force read as the whole pair force (the tangential columns forgotten): the balance
     # fails, naming a frame.
     wrong = "--columns 'fx=c_fnet_force[1],fy=c_fnet_force[2]'"
