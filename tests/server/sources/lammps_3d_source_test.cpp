@@ -224,14 +224,14 @@ TEST(Lammps3d, SimpleCubicInAPeriodicBox) {
 TEST(Lammps3d, AFollowedRunsDimensionIsItsFirstFrames) {
   testing::TempDir dir;
   const std::vector<Sphere> spheres = simple_cubic();
-  const auto contacts =
-      pushing_pairs(spheres, kCubicBox, [](std::size_t) { return 1.0; }, [](std::size_t) { return 0.0; });
+  const auto contacts = pushing_pairs(
+      spheres, kCubicBox, [](std::size_t) { return 1.0; }, [](std::size_t) { return 0.0; });
   dir.write("atoms.txt", atoms_dump(1, kCubicBox, spheres) + atoms_dump(2, kCubicBox, spheres));
   dir.write("pairs.txt", pairs_dump(1, kCubicBox, contacts) + pairs_dump(2, kCubicBox, contacts));
   dir.write("log.lammps", "dimension 2\n");
-  const auto frames = testing::read_run_frames(
-      dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--follow", "--idle-timeout", "0.2",
-                   "--lammps-log", "@log.lammps"});
+  const auto frames =
+      testing::read_run_frames(dir.path(), {"--lammps-atoms", "@atoms.txt", "--lammps-pairs", "@pairs.txt", "--follow",
+                                            "--idle-timeout", "0.2", "--lammps-log", "@log.lammps"});
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_EQ(frames[1].frame.dimension, 3);
   EXPECT_NEAR(frames[1].header.rho, std::numbers::pi / 6, 1e-15);
