@@ -9,8 +9,10 @@ stores against LAMMPS: the contacts of each frame against compute contact/atom, 
 disks' area over the box LAMMPS computes, the forces against the pair/local dump read here, the
 force columns' meaning against LAMMPS's per-atom forces, Z
 against the contacts' normal forces, the force balance holding (--check-balance in the page's
-line) and failing when the normal force is read as the whole pair force, and the grains dumped
-with their z (one value, fix enforce2d) read as the same 2D frames. Exit status 0 when every check
+line) and failing when the normal force is read as the whole pair force, the grains dumped
+with their z (one value, fix enforce2d) read as the same 2D frames, the page's dumps written
+gzip-compressed by LAMMPS (custom/gz, local/gz) read as the same frames, and --rho column on a
+dumped per-atom copy of LAMMPS's rho. Exit status 0 when every check
 holds, 1 otherwise.
 """
 import json
@@ -38,8 +40,23 @@ fix fnet_numbers all ave/time 1000 1 1000 c_fnet_pairs_touching v_fnet_rho file 
 {doc}
 dump fnet_test_forces all custom 1000 forces.*.txt id fx fy
 dump fnet_test_z all custom 1000 atoms-z.*.txt id type x y z radius
+variable fnet_rho_atom atom v_fnet_rho
+dump fnet_test_rho all custom 1000 atoms-rho.*.txt id type x y radius v_fnet_rho_atom
+dump_modify fnet_test_rho format float %.12g
+{gz}
 run 3000 post no
 """
+
+
+def gz_dumps(doc_lines):
+    """The page's two dumps again, gzip-compressed by LAMMPS itself (custom/gz, local/gz)."""
+    out = []
+    for line in doc_lines.splitlines():
+        for name, style in (("fnet_atoms", "custom"), ("fnet_pairs", "local")):
+            if line.startswith(f"dump {name} all {style} "):
+                out.append(line.replace(f"dump {name} all {style} ", f"dump {name}_gz all {style}/gz ")
+                           .replace(".*.txt", ".*.txt.gz"))
+    return "\n".join(out)
 
 failures = []
 
@@ -81,8 +98,9 @@ def source_config(path):
 def run_style(style, args, doc, work):
     print(f"== pair_style {style}")
     os.makedirs(work)
-    text = lammps_inputs.disks(4711, style) + PROTOCOL.format(
-        doc="\n".join(blocks(doc, "lammps")), rho=blocks(doc, "lammps rho")[0])
+    lines = "\n".join(blocks(doc, "lammps"))
+    text = lammps_inputs.disks(4711, style) + PROTOCOL.format(doc=lines, rho=blocks(doc, "lammps rho")[0],
+                                                              gz=gz_dumps(lines))
     open(os.path.join(work, "in.fnet"), "w").write(text)
     r = subprocess.run([args.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
                        capture_output=True, text=True)
@@ -156,6 +174,29 @@ def run_style(style, args, doc, work):
     # (the dump's radii have 6 digits: fnet's own rho is as close as that)
     check(all(abs(g["rho"] - f["rho"]) < 1e-5 * f["rho"] for f, g in zip(frames, from_log)),
           "--rho log: fnet's own rho of the periodic box within the dump's digits")
+    # --rho column: the per-atom copy of the same variable, dumped with 12 digits.
+    store_lines = [b for b in blocks(doc, "sh") if "--follow" not in b and "--run-id packing " in b]
+    variants = {"packing-column": ("atoms.*.txt", "atoms-rho.*.txt", " --rho column:v_fnet_rho_atom"),
+                "packing-gz": ("'atoms.*.txt' --lammps-pairs 'pairs.*.txt'",
+                               "'atoms.*.txt.gz' --lammps-pairs 'pairs.*.txt.gz'", "")}
+    for run, (old, new, extra) in variants.items():
+        line = store_lines[0].strip().replace(old, new).replace("--run-id packing ", f"--run-id {run} ") + extra
+        r = subprocess.run(line, shell=True, cwd=work, env=env, capture_output=True, text=True)
+        check(r.returncode == 0, f"{line}: exit {r.returncode} {r.stderr.strip()}")
+    if os.path.exists(os.path.join(work, "stores", "packing-column.h5")):
+        column = stored(os.path.join(work, "stores", "packing-column.h5"))
+        check([g["step"] for g in column] == steps and all(
+            abs(g["rho"] - lammps[g["step"]][1]) < 1e-11 * g["rho"] for g in column if g["step"] in lammps),
+            f"--rho column: LAMMPS's rho to 12 digits {[g['rho'] for g in column]}")
+        check(source_config(os.path.join(work, "stores", "packing-column.h5"))["rho"] == "column:v_fnet_rho_atom",
+              "--rho column: recorded in the announcement")
+    # Dumps LAMMPS wrote compressed (custom/gz, local/gz): the same frames as the plain ones.
+    if os.path.exists(os.path.join(work, "stores", "packing-gz.h5")):
+        gz = stored(os.path.join(work, "stores", "packing-gz.h5"))
+        check(len(gz) == len(frames) and all(
+            g["step"] == f["step"] and g["rho"] == f["rho"] and g["z"] == f["z"]
+            and np.array_equal(g["pairs"], f["pairs"]) and np.array_equal(g["forces"], f["forces"])
+            for f, g in zip(frames, gz)), "gzip dumps written by LAMMPS: the same frames as the plain dumps")
     # diagram and explain read the frames store stored: the diagram's vertices are the grains, its
     # edges the contacts with F_n > 0, the same from the file and from the pattern; explain the same
     # from two files and from two TIMESTEPs of the pattern, its grains with positions.
