@@ -342,7 +342,10 @@ def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True,
     `after` minus that in `before` (the scale topped at the 99th percentile of |change|), the
     contacts created (in `after` only: "created", green, solid) and broken (in `before` only:
     "broken", grey, dashed); each collection's contacts in the order of contact_states. `walls`
-    as in network()."""
+    as in network(). Frames of 2D runs only: a 3D frame raises ValueError (draw each with network())."""
+    if 3 in (dimension_of(before), dimension_of(after)):
+        raise ValueError("network_change draws 2D frames; draw each 3D frame with network(), a slab or the "
+                         "projection")
     pairs, f_before, f_after = contact_states(before, after, force)
     created, broken = np.isnan(f_before), np.isnan(f_after)
     kept = ~created & ~broken

@@ -120,6 +120,8 @@ def test_slab_discs_and_contact_points_by_hand():
     assert figures.in_slab(f, f.contact_pairs, (0.5, 1.0)).tolist() == [False]
     with pytest.raises(ValueError, match="walls"):
         figures.network(f, walls={"box": 10.0, "wall_diameter": 1.0})
+    with pytest.raises(ValueError, match="network_change draws 2D frames"):
+        figures.network_change(f, f)
     with pytest.raises(ValueError, match="x, y, r, z"):
         figures.network(Frame(f, particles=f.particles[:, :3]))
 
