@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "common/codec/run_info_json.hpp"
+#include "common/run/particle_columns.hpp"
 #include "common/store/hdf5_io.hpp"
 
 namespace fnet {
@@ -19,7 +20,8 @@ constexpr std::size_t kReasonBytes = 1024;             // one rejection reason
 constexpr std::size_t kCounts = 6;                     // vertices, edges, triangles of normal, then tangential
 constexpr std::size_t kPointOffsets = 5;               // start of the 4 diagrams in /points, and the end
 constexpr std::size_t kSeries = kStoredSeries.size();  // columns of `distances`
-constexpr std::size_t kNetworkOffsets = 4;             // the frame's rows [begin, end) in particles, in the contacts
+// The frame's rows [begin, end) in particles (and particle_z, since fnet-store-3), in the contacts.
+constexpr std::size_t kNetworkOffsets = 4;
 
 h5::Datatype fixed_string(std::size_t bytes) {
   h5::Datatype type(H5Tcopy(H5T_C_S1), "H5Tcopy");
@@ -59,7 +61,8 @@ std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t 
 }
 
 // The network of row `row` of an open store, whose frame is `index`; nullopt when not stored.
-std::optional<Frame> network_at(hid_t file, std::size_t row, const std::string& run_id, std::uint32_t index,
+// A fnet-store-2 store (`v2`) predates 3D frames: no dimension, no particle_z.
+std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std::string& run_id, std::uint32_t index,
                                 std::uint64_t particle_count, const std::string& where) {
   h5::Dataset flags(H5Dopen2(file, "has_network", H5P_DEFAULT), where + ": open has_network");
   std::uint8_t stored = 0;
@@ -68,8 +71,13 @@ std::optional<Frame> network_at(hid_t file, std::size_t row, const std::string& 
   h5::Dataset offsets(H5Dopen2(file, "network_offsets", H5P_DEFAULT), where + ": open network_offsets");
   std::array<std::uint64_t, kNetworkOffsets> off{};
   h5::read_rows(offsets.get(), H5T_NATIVE_UINT64, off.data(), row, 1, kNetworkOffsets, where + ": network_offsets");
-  const std::size_t n = off[1] - off[0], m = off[3] - off[2];
-  std::vector<double> particles(3 * n), forces(2 * m);
+  std::uint8_t dimension = 2;
+  if (!v2) {
+    h5::Dataset d(H5Dopen2(file, "dimension", H5P_DEFAULT), where + ": open dimension");
+    h5::read_rows(d.get(), H5T_NATIVE_UINT8, &dimension, row, 1, 0, where + ": dimension");
+  }
+  const std::size_t n = off[1] - off[0], m = off[3] - off[2], nz = v2 ? 0 : n;
+  std::vector<double> particles(3 * n), z(nz), forces(2 * m);
   std::vector<std::uint32_t> pairs(2 * m);
   h5::Dataset p(H5Dopen2(file, "particles", H5P_DEFAULT), where + ": open particles");
   h5::Dataset cp(H5Dopen2(file, "contact_pairs", H5P_DEFAULT), where + ": open contact_pairs");
@@ -77,12 +85,17 @@ std::optional<Frame> network_at(hid_t file, std::size_t row, const std::string& 
   h5::read_rows(p.get(), H5T_NATIVE_DOUBLE, particles.data(), off[0], n, 3, where + ": particles");
   h5::read_rows(cp.get(), H5T_NATIVE_UINT32, pairs.data(), off[2], m, 2, where + ": contact_pairs");
   h5::read_rows(cf.get(), H5T_NATIVE_DOUBLE, forces.data(), off[2], m, 2, where + ": contact_forces");
+  if (nz) {
+    h5::Dataset pz(H5Dopen2(file, "particle_z", H5P_DEFAULT), where + ": open particle_z");
+    h5::read_rows(pz.get(), H5T_NATIVE_DOUBLE, z.data(), off[0], nz, 0, where + ": particle_z");
+  }
   Frame f;
   f.label = frame_label(run_id, index);
   f.particle_count = particle_count;
-  f.particles.reserve(n);
-  for (std::size_t k = 0; k < n; ++k)
-    f.particles.push_back({particles[3 * k], particles[3 * k + 1], particles[3 * k + 2]});
+  f.dimension = dimension;
+  if (const std::string wrong = set_particles(f, particles.data(), particles.size(), z.data(), z.size());
+      !wrong.empty())
+    throw h5::Error(where + ": frame " + std::to_string(index) + ": " + wrong);
   f.contacts.reserve(m);
   for (std::size_t k = 0; k < m; ++k)
     f.contacts.push_back({pairs[2 * k], pairs[2 * k + 1], forces[2 * k], forces[2 * k + 1]});
@@ -143,7 +156,9 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
       h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
     h5::create_extendible(f, "has_network", H5T_NATIVE_UINT8, 0, 256);
     h5::create_extendible(f, "network_offsets", H5T_NATIVE_UINT64, kNetworkOffsets, 256);
+    h5::create_extendible(f, "dimension", H5T_NATIVE_UINT8, 0, 256);
     h5::create_extendible(f, "particles", H5T_NATIVE_DOUBLE, 3, 4096);
+    h5::create_extendible(f, "particle_z", H5T_NATIVE_DOUBLE, 0, 4096);
     h5::create_extendible(f, "contact_pairs", H5T_NATIVE_UINT32, 2, 4096);
     h5::create_extendible(f, "contact_forces", H5T_NATIVE_DOUBLE, 2, 4096);
   }
@@ -165,7 +180,9 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
                            "rejected_at",
                            "has_network",
                            "network_offsets",
+                           "dimension",
                            "particles",
+                           "particle_z",
                            "contact_pairs",
                            "contact_forces"})
     sets_.emplace(name, h5::Dataset(H5Dopen2(file_.get(), name, H5P_DEFAULT), std::string("open ") + name));
@@ -183,7 +200,8 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     for (std::size_t k = 0; k < previous->frames.size(); ++k) {
       AnalyzedFrame& f = previous->frames[k];
       if (old && previous->has_network[k])
-        if (auto net = network_at(old->get(), k, run_id, f.header.index, f.diagrams.normal.vertices, path.string()))
+        if (auto net = network_at(old->get(), previous->schema == kStoreSchemaV2, k, run_id, f.header.index,
+                                  f.diagrams.normal.vertices, path.string()))
           f.network = std::make_shared<const Frame>(std::move(*net));
       append(f, previous->committed_at[k]);
       f.network.reset();
@@ -226,12 +244,13 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   std::array<std::uint64_t, kNetworkOffsets> network_offsets{};
   network_offsets[0] = network_offsets[1] = h5::row_count(file_.get(), "particles", "store");
   network_offsets[2] = network_offsets[3] = h5::row_count(file_.get(), "contact_pairs", "store");
+  // The frame's dimension is known from its network; a frame committed without one is taken as 2D.
+  const std::uint8_t dimension = f.network ? static_cast<std::uint8_t>(f.network->dimension) : 2;
   if (f.network) {
     const Frame& net = *f.network;
-    std::vector<double> particles, forces;
+    const ParticleColumns particles = particle_columns(net);
+    std::vector<double> forces;
     std::vector<std::uint32_t> pairs;
-    particles.reserve(3 * net.particles.size());
-    for (const Particle& p : net.particles) particles.insert(particles.end(), {p.x, p.y, p.r});
     pairs.reserve(2 * net.contacts.size());
     forces.reserve(2 * net.contacts.size());
     for (const Contact& c : net.contacts) {
@@ -240,12 +259,14 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
     }
     network_offsets[1] += net.particles.size();
     network_offsets[3] += net.contacts.size();
-    h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.data(), net.particles.size(), 3);
+    h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.xyr.data(), net.particles.size(), 3);
+    h5::append_rows(set("particle_z"), H5T_NATIVE_DOUBLE, particles.z.data(), net.particles.size(), 0);
     h5::append_rows(set("contact_pairs"), H5T_NATIVE_UINT32, pairs.data(), net.contacts.size(), 2);
     h5::append_rows(set("contact_forces"), H5T_NATIVE_DOUBLE, forces.data(), net.contacts.size(), 2);
   }
   h5::append_rows(set("has_network"), H5T_NATIVE_UINT8, &has_network, 1, 0);
   h5::append_rows(set("network_offsets"), H5T_NATIVE_UINT64, network_offsets.data(), 1, kNetworkOffsets);
+  h5::append_rows(set("dimension"), H5T_NATIVE_UINT8, &dimension, 1, 0);
   h5::append_rows(set("step"), H5T_NATIVE_UINT64, &f.header.step, 1, 0);
   h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &f.header.time, 1, 0);
   h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &f.header.rho, 1, 0);
@@ -269,7 +290,7 @@ std::optional<Frame> StoreWriter::network(std::uint32_t index) const {
   h5::Dataset counts(H5Dopen2(file_.get(), "counts", H5P_DEFAULT), "open counts");
   std::array<std::uint64_t, kCounts> c{};
   h5::read_rows(counts.get(), H5T_NATIVE_UINT64, c.data(), row, 1, kCounts, "store of run " + run_id_);
-  return network_at(file_.get(), row, run_id_, index, c[0], "store of run " + run_id_);
+  return network_at(file_.get(), false, row, run_id_, index, c[0], "store of run " + run_id_);
 }
 
 void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
@@ -324,9 +345,11 @@ StoredRun read_store(const std::filesystem::path& path) {
              "open " + file + " (not an HDF5 store?)");
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   const std::string schema = h5::read_string(root.get(), "schema", file);
-  if (schema != kStoreSchema && schema != kStoreSchemaV1)
-    throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "' or '" + kStoreSchemaV1 + "'");
+  if (schema != kStoreSchema && schema != kStoreSchemaV2 && schema != kStoreSchemaV1)
+    throw h5::Error(file + ": schema '" + schema + "', expected '" + kStoreSchema + "', '" + kStoreSchemaV2 + "' or '" +
+                    kStoreSchemaV1 + "'");
   const bool v1 = schema == kStoreSchemaV1;
+  const bool v2 = schema == kStoreSchemaV2;
   StoredRun out;
   out.schema = schema;
   out.provenance = read_provenance(root.get(), file);
@@ -362,6 +385,7 @@ StoredRun read_store(const std::filesystem::path& path) {
     has_network = h5::read_uint32s(g, "has_network", 0, file);
     network_offsets = h5::read_uint64s(g, "network_offsets", kNetworkOffsets, file);
     particle_rows = h5::row_count(g, "particles", file);
+    if (!v2) particle_rows = std::min(particle_rows, h5::row_count(g, "particle_z", file));
     contact_rows = std::min(h5::row_count(g, "contact_pairs", file), h5::row_count(g, "contact_forces", file));
   }
   // Committed frames: those every column covers (a killed writer may leave some columns longer).
@@ -414,7 +438,8 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
   if (!run.has_network[row]) return std::nullopt;
   const h5::PropertyList fapl = h5::latest_format();
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + path.string());
-  return network_at(f.get(), row, run.info.run_id, index, it->diagrams.normal.vertices, path.string());
+  return network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, index, it->diagrams.normal.vertices,
+                    path.string());
 }
 
 }  // namespace fnet

@@ -19,11 +19,13 @@
 
 namespace fnet {
 
-inline constexpr const char* kStoreSchema = "fnet-store-2";
+inline constexpr const char* kStoreSchema = "fnet-store-3";
 // The convention for classes that never die under which the stored distances are measured.
 inline constexpr const char* kStoreConvention = "floor";
 // The first schema, without the frames' networks: still read, and continued as the current one.
 inline constexpr const char* kStoreSchemaV1 = "fnet-store-1";
+// Before 3D frames: still read (its networks as 2D frames), and continued as the current one.
+inline constexpr const char* kStoreSchemaV2 = "fnet-store-2";
 
 // When something was written to a store: seconds since the Unix epoch (UTC), NaN for a record
 // of a store written before the time was kept.

@@ -4,6 +4,7 @@
 #include <array>
 #include <string>
 
+#include "common/run/particle_columns.hpp"
 #include "common/store/hdf5_io.hpp"
 #include "common/store/run_file_v1.hpp"
 
@@ -13,10 +14,11 @@ namespace {
 using h5::check;
 
 // Per frame (one row each); "frame" last, the commit mark.
-constexpr const char* kFrameColumns[] = {"step", "time", "rho", "z", "particle_count", "offsets"};
+constexpr const char* kFrameColumns[] = {"step", "time", "rho", "z", "particle_count", "dimension", "offsets"};
 // Rows of many frames, located by a frame's "offsets".
-constexpr const char* kBulk[] = {"particles", "contact_pairs", "contact_forces", "wall_contact_particles",
-                                 "wall_contact_forces"};
+// particle_z (since fnet-run-3) has the rows of particles.
+constexpr const char* kBulk[] = {
+    "particles", "particle_z", "contact_pairs", "contact_forces", "wall_contact_particles", "wall_contact_forces"};
 constexpr std::size_t kFrameOffsets = 6;  // begin and end rows in particles, contacts, wall contacts
 
 }  // namespace
@@ -55,8 +57,10 @@ void RunFileWriter::create(const std::filesystem::path& path, const RunInfo& inf
   h5::create_extendible(f, "step", H5T_NATIVE_UINT64, 0, 256);
   for (const char* name : {"time", "rho", "z"}) h5::create_extendible(f, name, H5T_NATIVE_DOUBLE, 0, 256);
   h5::create_extendible(f, "particle_count", H5T_NATIVE_UINT64, 0, 256);
+  h5::create_extendible(f, "dimension", H5T_NATIVE_UINT8, 0, 256);
   h5::create_extendible(f, "offsets", H5T_NATIVE_UINT64, kFrameOffsets, 256);
   h5::create_extendible(f, "particles", H5T_NATIVE_DOUBLE, 3, 4096);
+  h5::create_extendible(f, "particle_z", H5T_NATIVE_DOUBLE, 0, 4096);
   h5::create_extendible(f, "contact_pairs", H5T_NATIVE_UINT32, 2, 4096);
   h5::create_extendible(f, "contact_forces", H5T_NATIVE_DOUBLE, 2, 4096);
   h5::create_extendible(f, "wall_contact_particles", H5T_NATIVE_UINT32, 0, 1024);
@@ -86,9 +90,7 @@ hid_t RunFileWriter::set(const char* name) const { return sets_.at(name).get(); 
 
 void RunFileWriter::append(const RunFrame& rf) {
   const Frame& f = rf.frame;
-  std::vector<double> particles;
-  particles.reserve(3 * f.particles.size());
-  for (const Particle& p : f.particles) particles.insert(particles.end(), {p.x, p.y, p.r});
+  const ParticleColumns particles = particle_columns(f);
   std::vector<std::uint32_t> pairs;
   std::vector<double> forces;
   for (const Contact& c : f.contacts) {
@@ -111,7 +113,8 @@ void RunFileWriter::append(const RunFrame& rf) {
                                                          rows("wall_contact_particles") + rf.wall_contacts.size()};
   // The bulk first, the frame's own row next, its index last: a reader trusts a frame only once
   // "frame" covers it (a killed writer may leave longer datasets behind).
-  h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.data(), f.particles.size(), 3);
+  h5::append_rows(set("particles"), H5T_NATIVE_DOUBLE, particles.xyr.data(), f.particles.size(), 3);
+  h5::append_rows(set("particle_z"), H5T_NATIVE_DOUBLE, particles.z.data(), f.particles.size(), 0);
   h5::append_rows(set("contact_pairs"), H5T_NATIVE_UINT32, pairs.data(), f.contacts.size(), 2);
   h5::append_rows(set("contact_forces"), H5T_NATIVE_DOUBLE, forces.data(), f.contacts.size(), 2);
   h5::append_rows(set("wall_contact_particles"), H5T_NATIVE_UINT32, wall_particles.data(), wall_particles.size(), 0);
@@ -121,7 +124,9 @@ void RunFileWriter::append(const RunFrame& rf) {
   h5::append_rows(set("time"), H5T_NATIVE_DOUBLE, &rf.header.time, 1, 0);
   h5::append_rows(set("rho"), H5T_NATIVE_DOUBLE, &rf.header.rho, 1, 0);
   h5::append_rows(set("z"), H5T_NATIVE_DOUBLE, &rf.header.z, 1, 0);
+  const auto dimension = static_cast<std::uint8_t>(f.dimension);
   h5::append_rows(set("particle_count"), H5T_NATIVE_UINT64, &particle_count, 1, 0);
+  h5::append_rows(set("dimension"), H5T_NATIVE_UINT8, &dimension, 1, 0);
   h5::append_rows(set("offsets"), H5T_NATIVE_UINT64, offsets.data(), 1, kFrameOffsets);
   check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("frame"), H5T_NATIVE_UINT32, &rf.header.index, 1, 0);
@@ -145,9 +150,11 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
     schema = h5::read_string(root.get(), "schema", file);
   }
   if (schema == kRunFileSchemaV1) return read_run_file_v1(f.get(), file);
-  if (schema != kRunFileSchema)
+  if (schema != kRunFileSchema && schema != kRunFileSchemaV2)
     throw h5::Error(file + ": schema '" + schema + "', expected '" + kRunFileSchema + "' (or the older '" +
-                    kRunFileSchemaV1 + "')");
+                    kRunFileSchemaV2 + "' or '" + kRunFileSchemaV1 + "')");
+  // fnet-run-2 predates 3D frames: no dimension, no particle_z.
+  const bool v2 = schema == kRunFileSchemaV2;
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   RunFileContents out;
   out.info = read_run_info(root.get(), file);
@@ -161,19 +168,21 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   const auto z = h5::read_doubles(g, "z", 0, file);
   const auto particle_count = h5::read_uint64s(g, "particle_count", 0, file);
   const auto offsets = h5::read_uint64s(g, "offsets", kFrameOffsets, file);
+  const auto dimension = v2 ? std::vector<std::uint32_t>(frame.size(), 2) : h5::read_uint32s(g, "dimension", 0, file);
   const auto particles = h5::read_doubles(g, "particles", 3, file);
+  const auto particle_z = v2 ? std::vector<double>{} : h5::read_doubles(g, "particle_z", 0, file);
   const auto pairs = h5::read_uint32s(g, "contact_pairs", 2, file);
   const auto forces = h5::read_doubles(g, "contact_forces", 2, file);
   const auto wall_particles = h5::read_uint32s(g, "wall_contact_particles", 0, file);
   const auto wall_forces = h5::read_doubles(g, "wall_contact_forces", 2, file);
   // Committed frames: those every column covers.
   std::size_t n = frame.size();
-  for (const std::size_t len :
-       {step.size(), time.size(), rho.size(), z.size(), particle_count.size(), offsets.size() / kFrameOffsets})
+  for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), particle_count.size(), dimension.size(),
+                                offsets.size() / kFrameOffsets})
     n = std::min(n, len);
-  const std::array<std::size_t, kFrameOffsets / 2> available{particles.size() / 3,
-                                                             std::min(pairs.size(), forces.size()) / 2,
-                                                             std::min(wall_particles.size(), wall_forces.size() / 2)};
+  const std::array<std::size_t, kFrameOffsets / 2> available{
+      v2 ? particles.size() / 3 : std::min(particles.size() / 3, particle_z.size()),
+      std::min(pairs.size(), forces.size()) / 2, std::min(wall_particles.size(), wall_forces.size() / 2)};
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint64_t* o = &offsets[k * kFrameOffsets];
     const std::string where = file + ": frame " + std::to_string(frame[k]);
@@ -183,8 +192,11 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
     rf.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     rf.frame.label = frame_label(out.info.run_id, frame[k]);
     rf.frame.particle_count = particle_count[k];
-    for (std::uint64_t r = o[0]; r < o[1]; ++r)
-      rf.frame.particles.push_back({particles[3 * r], particles[3 * r + 1], particles[3 * r + 2]});
+    rf.frame.dimension = static_cast<int>(dimension[k]);
+    if (const std::string wrong = set_particles(rf.frame, particles.data() + 3 * o[0], 3 * (o[1] - o[0]),
+                                                v2 ? nullptr : particle_z.data() + o[0], v2 ? 0 : o[1] - o[0]);
+        !wrong.empty())
+      throw h5::Error(where + ": " + wrong);
     for (std::uint64_t r = o[2]; r < o[3]; ++r)
       rf.frame.contacts.push_back({pairs[2 * r], pairs[2 * r + 1], forces[2 * r], forces[2 * r + 1]});
     for (std::uint64_t r = o[4]; r < o[5]; ++r)

@@ -15,7 +15,9 @@
 
 namespace fnet {
 
-inline constexpr const char* kRunFileSchema = "fnet-run-2";
+inline constexpr const char* kRunFileSchema = "fnet-run-3";
+// Before 3D frames: still read, as 2D frames.
+inline constexpr const char* kRunFileSchemaV2 = "fnet-run-2";
 
 class RunFileWriter {
  public:

@@ -5,6 +5,7 @@
 #include <string>
 #include <thread>
 
+#include "common/run/particle_columns.hpp"
 #include "fnet.h"
 
 namespace fnet::dds {
@@ -46,17 +47,19 @@ RunFrame decode(const fnet_ForceFrame& s) {
   f.label = frame_label(out.header.run_id, s.frame);
   f.particle_count = s.particle_count;
   const auto bad = [&](const std::string& what) { return FrameError(f.label + ": " + what); };
-  if (s.particles._length % 3 != 0)
-    throw bad("particle array length " + std::to_string(s.particles._length) + " is not a multiple of 3");
+  f.dimension = s.dimension;
   if (s.contact_pairs._length % 2 != 0 || s.contact_forces._length != s.contact_pairs._length)
     throw bad("contact arrays disagree: " + std::to_string(s.contact_pairs._length) + " indices, " +
               std::to_string(s.contact_forces._length) + " forces (expected 2 per contact each)");
   if (s.wall_contact_forces._length != 2 * s.wall_contact_particles._length)
     throw bad("wall contact arrays disagree: " + std::to_string(s.wall_contact_particles._length) + " particles, " +
               std::to_string(s.wall_contact_forces._length) + " forces");
-  f.particles.resize(s.particles._length / 3);
-  for (std::size_t k = 0; k < f.particles.size(); ++k)
-    f.particles[k] = {s.particles._buffer[3 * k], s.particles._buffer[3 * k + 1], s.particles._buffer[3 * k + 2]};
+  if (f.dimension != 2 && f.dimension != 3)
+    throw bad("dimension " + std::to_string(f.dimension) + " is neither 2 nor 3");
+  if (const std::string wrong =
+          set_particles(f, s.particles._buffer, s.particles._length, s.particle_z._buffer, s.particle_z._length);
+      !wrong.empty())
+    throw bad(wrong);
   f.contacts.resize(s.contact_pairs._length / 2);
   for (std::size_t k = 0; k < f.contacts.size(); ++k)
     f.contacts[k] = {s.contact_pairs._buffer[2 * k], s.contact_pairs._buffer[2 * k + 1],
@@ -150,12 +153,8 @@ void FramePublisher::publish(const RunInfo& info) {
 
 void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
   const Frame& f = frame.frame;
-  std::vector<double> particles(3 * f.particles.size());
-  for (std::size_t k = 0; k < f.particles.size(); ++k) {
-    particles[3 * k] = f.particles[k].x;
-    particles[3 * k + 1] = f.particles[k].y;
-    particles[3 * k + 2] = f.particles[k].r;
-  }
+  ParticleColumns particles = particle_columns(f);
+  if (f.dimension != 3) particles.z.clear();  // a 2D frame's z is 0: not sent
   std::vector<std::uint32_t> pairs(2 * f.contacts.size());
   std::vector<double> forces(2 * f.contacts.size());
   for (std::size_t k = 0; k < f.contacts.size(); ++k) {
@@ -179,11 +178,13 @@ void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
   s.rho = frame.header.rho;
   s.z = frame.header.z;
   s.particle_count = static_cast<std::uint32_t>(f.particle_count);
-  s.particles = borrow<dds_sequence_double>(particles);
+  s.particles = borrow<dds_sequence_double>(particles.xyr);
   s.contact_pairs = borrow<dds_sequence_uint32>(pairs);
   s.contact_forces = borrow<dds_sequence_double>(forces);
   s.wall_contact_particles = borrow<dds_sequence_uint32>(wall_particles);
   s.wall_contact_forces = borrow<dds_sequence_double>(wall_forces);
+  s.dimension = static_cast<std::uint8_t>(f.dimension);
+  s.particle_z = borrow<dds_sequence_double>(particles.z);
 
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(give_up);
   while (true) {

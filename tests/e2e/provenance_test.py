@@ -95,7 +95,7 @@ try:
         build_info = json.loads(reply)["result"]["build"]
         version, commit = seen.get("fnet-server", ("?", "?"))
         check(build_info["version"] == version and build_info["commit"] == commit
-              and build_info["store_schema"] == "fnet-store-2" and build_info["convention"] == "floor",
+              and build_info["store_schema"] == "fnet-store-3" and build_info["convention"] == "floor",
               f"server.status build {build_info} equals fnet-server --version")
 finally:
     server.terminate()

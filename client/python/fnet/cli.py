@@ -134,7 +134,7 @@ def build_parser():
     p = kinds.add_parser("network", help="Fig. 1: a frame's force network (or the change between two frames)")
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument("--run-file", help="the run file fnet-simd wrote (--out)")
-    source.add_argument("--store", help="an analysis store that keeps the frames' networks (fnet-store-2)")
+    source.add_argument("--store", help="an analysis store that keeps the frames' networks (fnet-store-2 or later)")
     p.add_argument("--frame", type=FRAME, required=True, help="the frame")
     p.add_argument("--other-frame", type=FRAME, help="draw the change from --frame to this frame")
     p.add_argument("--force", choices=("normal", "tangential"), default="normal", help="force network")

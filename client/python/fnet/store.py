@@ -15,8 +15,9 @@ from fnet.rpc import DEFAULT_DIM
 
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
 FORCES = ("normal", "tangential")
-STORE_SCHEMAS = ("fnet-store-1", "fnet-store-2")  # the second adds each frame's network
-RUN_SCHEMAS = ("fnet-run-1", "fnet-run-2")
+# fnet-store-2 adds each frame's network, fnet-store-3 its dimension and the z of 3D frames.
+STORE_SCHEMAS = ("fnet-store-1", "fnet-store-2", "fnet-store-3")
+RUN_SCHEMAS = ("fnet-run-1", "fnet-run-2", "fnet-run-3")  # fnet-run-3 adds dimension and particle_z
 
 
 def series_key(metric, dim, force):
@@ -90,7 +91,7 @@ class _SwmrFile:
 
 
 class Store(_SwmrFile):
-    """An analysis store (schema fnet-store-1 or fnet-store-2), opened read-only in SWMR mode."""
+    """An analysis store (schema fnet-store-1, -2 or -3), opened read-only in SWMR mode."""
 
     def __init__(self, path):
         super().__init__(path, STORE_SCHEMAS)
@@ -118,9 +119,12 @@ class Store(_SwmrFile):
             net = f["network_offsets"][:n]
             if len(net) < n:
                 committed[len(net):] = False
-                net = np.vstack([net, np.zeros((n - len(net), 4), dtype=net.dtype)])
+                net = np.vstack([net, np.zeros((n - len(net), net.shape[1]), dtype=net.dtype)])
             committed &= (net[:, 1] <= len(f["particles"])) & (net[:, 3] <= min(len(f["contact_pairs"]),
                                                                                  len(f["contact_forces"])))
+            if "particle_z" in f:
+                f["particle_z"].refresh()
+                committed &= net[:, 1] <= len(f["particle_z"])
         if not committed.all():
             n = int(np.argmin(committed))
             cols = {k: v[:n] for k, v in cols.items()}
@@ -174,8 +178,9 @@ class Store(_SwmrFile):
         return tuple(int(v) for v in c[k:k + 3])
 
     def network(self, frame):
-        """The force network a frame was analyzed from, as a Frame (particles, contact_pairs,
-        contact_forces; no wall contacts), if the store keeps it (schema fnet-store-2); else None."""
+        """The force network a frame was analyzed from, as a Frame (particles, particle_z,
+        contact_pairs, contact_forces; no wall contacts), if the store keeps it (schema fnet-store-2 or later);
+        else None."""
         row = self._row(frame)
         f = self.file
         if "has_network" not in f:
@@ -185,9 +190,10 @@ class Store(_SwmrFile):
         if not f["has_network"][row]:
             return None
         p0, p1, c0, c1 = (int(v) for v in f["network_offsets"][row])
+        dimension, particle_z = _dimension_and_z(f, row, p0, p1)
         c = self._cols
         return Frame(index=int(frame), run=self.run_id, step=int(c["step"][row]), time=float(c["time"][row]),
-                     rho=float(c["rho"][row]), z=float(c["z"][row]),
+                     rho=float(c["rho"][row]), z=float(c["z"][row]), dimension=dimension, particle_z=particle_z,
                      particles=np.asarray(f["particles"][p0:p1], dtype=np.float64).reshape(-1, 3),
                      contact_pairs=np.asarray(f["contact_pairs"][c0:c1], dtype=np.int64).reshape(-1, 2),
                      contact_forces=np.asarray(f["contact_forces"][c0:c1], dtype=np.float64).reshape(-1, 2),
@@ -203,10 +209,21 @@ class Store(_SwmrFile):
         return list(zip((int(v) for v in f["rejected_frame"][:n]), _fixed_strings(f["rejected_reason"], n)))
 
 
+def _dimension_and_z(f, row, p0, p1):
+    """Row `row`'s dimension and the z of its particles, rows p0:p1 (2 and zeros in a file from
+    before 3D frames)."""
+    if "dimension" not in f:
+        return 2, np.zeros(p1 - p0)
+    for name in ("dimension", "particle_z"):
+        f[name].refresh()
+    return int(f["dimension"][row]), np.asarray(f["particle_z"][p0:p1], dtype=np.float64).reshape(-1)
+
+
 class Frame(Result):
-    """One frame of a run file: index, step, time, rho, z, particles (N, 3: x, y, r),
-    contact_pairs (M, 2: i < j), contact_forces (M, 2: signed F_n, |F_t|), wall_contact_particles
-    (W,), wall_contact_forces (W, 2)."""
+    """One frame of a run file: index, step, time, rho, z (the coordination number), dimension (2
+    or 3), particles (N, 3: x, y, r), particle_z (N,: each particle's z, 0 in 2D), contact_pairs
+    (M, 2: i < j), contact_forces (M, 2: signed F_n, |F_t|), wall_contact_particles (W,),
+    wall_contact_forces (W, 2)."""
 
     def forces(self, force="normal"):
         """The contacts' force of one kind, as magnitudes."""
@@ -216,7 +233,7 @@ class Frame(Result):
 
 
 class RunFile(_SwmrFile):
-    """A run file of fnet-simd (schema fnet-run-2, or the per-frame groups of fnet-run-1)."""
+    """A run file of fnet-simd (schema fnet-run-3 or -2, or the per-frame groups of fnet-run-1)."""
 
     _ATTRS = ("particles", "polydispersity", "friction", "k_n", "restitution", "kt_over_kn", "compression_speed",
               "dt", "final_density", "frames_planned", "seed")
@@ -261,6 +278,7 @@ class RunFile(_SwmrFile):
             g = self.file["frames"][self._groups[index]]
             data = {name: g[name][:] for name in names}
             head = {name: g.attrs[name].item() for name in ("step", "time", "rho", "z")}
+            head["dimension"], head["particle_z"] = 2, np.zeros(np.asarray(data["particles"]).size // 3)
         else:
             f = self.file
             p0, p1, c0, c1, w0, w1 = (int(v) for v in self._offsets[k])
@@ -270,6 +288,7 @@ class RunFile(_SwmrFile):
                     "contact_forces": f["contact_forces"][c0:c1], "wall_contact_particles":
                     f["wall_contact_particles"][w0:w1], "wall_contact_forces": f["wall_contact_forces"][w0:w1]}
             head = {name: f[name][k].item() for name in ("step", "time", "rho", "z")}
+            head["dimension"], head["particle_z"] = _dimension_and_z(f, k, p0, p1)
         return Frame(index=int(index), run=self.run_id, **head,
                      particles=np.asarray(data["particles"], dtype=np.float64).reshape(-1, 3),
                      contact_pairs=np.asarray(data["contact_pairs"], dtype=np.int64).reshape(-1, 2),

@@ -69,7 +69,7 @@ def test_command_line_draws_the_block_table(server, tmp_path):
 
 def test_store_keeps_each_frame_network_and_the_figure_draws_it(server, tmp_path):
     with fnet.store.open_store(server.store_path(RUN)) as st:
-        assert st.schema == "fnet-store-2"
+        assert st.schema == "fnet-store-3"
         frame = st.network(7)
     particles = np.loadtxt(LAMMPS / "frame_0007_particles.csv", delimiter=",", skiprows=1).reshape(-1, 4)
     contacts = np.loadtxt(LAMMPS / "frame_0007_contacts.csv", delimiter=",", skiprows=1).reshape(-1, 4)

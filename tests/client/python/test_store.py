@@ -22,6 +22,7 @@ LIVE_DOMAIN = 97
 RUN = "simd"
 FRAMES = 8
 LEGACY = SOURCE_DIR / "tests" / "data" / "run-file-v1"
+LEGACY_V2 = SOURCE_DIR / "tests" / "data" / "run-file-v2"
 
 
 @pytest.fixture(scope="module")
@@ -57,7 +58,7 @@ def expect_frame_is_csv(frame, csv_dir):
 def test_run_file_frames_are_the_csv_export(simd_run):
     _, out, csv_dir = simd_run
     with fnet.store.open_run_file(out) as f:
-        assert f.schema == "fnet-run-2" and f.run_id == RUN
+        assert f.schema == "fnet-run-3" and f.run_id == RUN
         assert f.attrs["particles"] == 150 and f.attrs["frames_planned"] == FRAMES
         assert f.config["particles"] == 150 and f.attrs["ensemble"] == ""
         np.testing.assert_array_equal(f.frames, np.arange(FRAMES))
@@ -75,7 +76,23 @@ def test_first_schema_run_file_is_read_like_the_current_one():
         assert f.schema == "fnet-run-1" and f.run_id == "legacy-v1" and f.attrs["ensemble"] == ""
         np.testing.assert_array_equal(f.frames, [0, 1, 2])
         for index in f.frames:
-            expect_frame_is_csv(f.frame(index), LEGACY / "csv")
+            frame = f.frame(index)
+            expect_frame_is_csv(frame, LEGACY / "csv")
+            assert frame.dimension == 2 and np.all(frame.particle_z == 0)
+
+
+def test_second_schema_files_are_read_as_two_dimensional():
+    with fnet.store.open_run_file(LEGACY_V2 / "legacy-v2.run.h5") as f:
+        assert f.schema == "fnet-run-2" and f.run_id == "legacy-v2"
+        for index in f.frames:
+            frame = f.frame(index)
+            expect_frame_is_csv(frame, LEGACY_V2 / "csv")
+            assert frame.dimension == 2 and frame.particle_z.shape == (60,) and np.all(frame.particle_z == 0)
+    with fnet.store.open_store(LEGACY_V2.parent / "store-v2" / "legacy-v2.h5") as st:
+        assert st.schema == "fnet-store-2"
+        network = st.network(2)
+        assert network.dimension == 2 and network.particles.shape == (60, 3) and np.all(network.particle_z == 0)
+        assert len(network.contact_pairs) > 0
 
 
 def test_store_holds_what_the_server_serves(simd_run):
@@ -129,7 +146,7 @@ def test_store_columns_follow_its_series_attribute(simd_run, tmp_path):
 def test_store_keeps_the_networks_the_daemon_sent(simd_run):
     server, out, _ = simd_run
     with fnet.store.open_store(server.store_path(RUN)) as st, fnet.store.open_run_file(out) as run_file:
-        assert st.schema == "fnet-store-2"
+        assert st.schema == "fnet-store-3"
         for index in st.frames:
             stored, sent = st.network(index), run_file.frame(index)
             for key in ("particles", "contact_pairs", "contact_forces", "rho", "z", "step"):

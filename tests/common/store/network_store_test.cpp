@@ -1,6 +1,6 @@
-// The analysis store keeps each accepted frame's force network (schema fnet-store-2), written with
-// the frame's commit and read back one frame at a time; stores of the first schema still load,
-// their frames without a network.
+// The analysis store keeps each accepted frame's force network (since fnet-store-2; with its
+// dimension and z since fnet-store-3), written with the frame's commit and read back one frame at a
+// time; stores of the earlier schemas still load, those of the first without networks.
 #include <algorithm>
 #include <filesystem>
 
@@ -16,6 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kStoreV1 = fs::path(FNET_TEST_DATA) / "store-v1" / "legacy-v1.h5";
+const fs::path kStoreV2 = fs::path(FNET_TEST_DATA) / "store-v2" / "legacy-v2.h5";
 
 AnalyzedFrame with_network(std::uint32_t index, Frame network) {
   AnalyzedFrame f;
@@ -28,10 +29,12 @@ AnalyzedFrame with_network(std::uint32_t index, Frame network) {
 
 void expect_same_network(const Frame& got, const Frame& want) {
   EXPECT_EQ(got.particle_count, want.particle_count);
+  EXPECT_EQ(got.dimension, want.dimension);
   ASSERT_EQ(got.particles.size(), want.particles.size());
   for (std::size_t k = 0; k < got.particles.size(); ++k) {
     EXPECT_EQ(got.particles[k].x, want.particles[k].x);
     EXPECT_EQ(got.particles[k].y, want.particles[k].y);
+    EXPECT_EQ(got.particles[k].z, want.particles[k].z);
     EXPECT_EQ(got.particles[k].r, want.particles[k].r);
   }
   ASSERT_EQ(got.contacts.size(), want.contacts.size());
@@ -43,10 +46,17 @@ void expect_same_network(const Frame& got, const Frame& want) {
   }
 }
 
+// A 3D frame: the LAMMPS frame's disks lifted to different heights.
+Frame lifted(Frame f) {
+  f.dimension = 3;
+  for (std::size_t k = 0; k < f.particles.size(); ++k) f.particles[k].z = 0.37 * static_cast<double>(k % 11) - 1.5;
+  return f;
+}
+
 TEST(NetworkStore, EveryFrameKeepsItsNetworkWhileWrittenAfterwardsAndWhenContinued) {
   testing::TempDir dir;
   const fs::path path = dir.path() / "nets.h5";
-  const Frame a = testing::lammps_frame(3), b = testing::lammps_frame(10);
+  const Frame a = testing::lammps_frame(3), b = lifted(testing::lammps_frame(10));
   {
     StoreWriter w(path, "nets");
     w.append(with_network(4, a));
@@ -99,6 +109,39 @@ TEST(NetworkStore, AFirstSchemaStoreLoadsAndIsContinuedWithoutNetworks) {
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(now.frames[k].header, old.frames[k].header);
     EXPECT_EQ(now.frames[k].diagrams.normal.pd0, old.frames[k].diagrams.normal.pd0);
+    EXPECT_EQ(now.frames[k].distances.value, old.frames[k].distances.value);
+  }
+}
+
+TEST(NetworkStore, ASecondSchemaStoreLoadsAsTwoDimensionalAndIsContinuedWithAThreeDimensionalFrame) {
+  // Written by fnet-analyze store before frames carried a dimension (tests/data/run-file-v2).
+  testing::TempDir dir;
+  const fs::path path = dir.path() / "legacy-v2.h5";
+  fs::copy_file(kStoreV2, path);
+  const StoredRun old = read_store(path);
+  EXPECT_EQ(old.schema, kStoreSchemaV2);
+  ASSERT_EQ(old.frames.size(), 3u);
+  EXPECT_EQ(old.has_network, (std::vector<bool>(3, true)));
+  const auto before = read_network(path, 2);
+  ASSERT_TRUE(before.has_value());
+  EXPECT_EQ(before->dimension, 2);
+  EXPECT_EQ(before->particles.size(), 60u);
+  EXPECT_GT(before->contacts.size(), 0u);
+  for (const Particle& p : before->particles) EXPECT_EQ(p.z, 0.0);
+  EXPECT_EQ(analyze_frame(*before).normal.pd0, old.frames[2].diagrams.normal.pd0);
+  const Frame c = lifted(testing::lammps_frame(5));
+  {
+    StoreWriter w(path, "legacy-v2");
+    expect_same_network(*w.network(2), *before);
+    w.append(with_network(3, c));
+  }
+  const StoredRun now = read_store(path);
+  EXPECT_EQ(now.schema, kStoreSchema);
+  ASSERT_EQ(now.frames.size(), 4u);
+  expect_same_network(*read_network(path, 2), *before);
+  expect_same_network(*read_network(path, 3), c);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(now.frames[k].header, old.frames[k].header);
     EXPECT_EQ(now.frames[k].distances.value, old.frames[k].distances.value);
   }
 }

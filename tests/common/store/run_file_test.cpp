@@ -39,6 +39,10 @@ RunFrame frame(const std::string& run, std::uint32_t index, std::size_t contacts
     f.frame.contacts.push_back(
         {static_cast<std::int64_t>(k % 300), static_cast<std::int64_t>((k * 7 + 1) % 300), u(rng), std::fabs(u(rng))});
   if (index % 2) f.wall_contacts.push_back({3, u(rng), 0.25});
+  if (index % 3 == 1) {  // every third frame is 3D
+    f.frame.dimension = 3;
+    for (Particle& p : f.frame.particles) p.z = u(rng);
+  }
   return f;
 }
 
@@ -63,7 +67,7 @@ int check_with_h5py(const fs::path& dir, const fs::path& file, std::uint32_t fra
   const fs::path script = dir / "check.py";
   std::ofstream(script) << "import h5py, sys, json\n"
                            "f = h5py.File(sys.argv[1], 'r', libver='latest', swmr=True)\n"
-                           "assert f.attrs['schema'] == 'fnet-run-2', f.attrs['schema']\n"
+                           "assert f.attrs['schema'] == 'fnet-run-3', f.attrs['schema']\n"
                            "assert f.attrs['run_id'] == 'py'\n"
                            "assert json.loads(f.attrs['config_json'])['mu'] == 0.5\n"
                            "n = int(sys.argv[2])\n"
@@ -123,9 +127,10 @@ TEST(RunFile, DocumentedExampleRunsOnALiveFile) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(printed, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 5u);  // the attributes, then one line per frame
-  EXPECT_EQ(lines[0], "fnet-run-2 doc 300");
-  EXPECT_EQ(lines[2].rfind("1 100 ", 0), 0u) << lines[2];
-  EXPECT_NE(lines[2].find("(300, 3) (30, 2) (30, 2) 1"), std::string::npos) << lines[2];
+  EXPECT_EQ(lines[0], "fnet-run-3 doc 300");
+  EXPECT_EQ(lines[2].rfind("1 100 3 ", 0), 0u) << lines[2];  // frame 1 is 3D
+  EXPECT_EQ(lines[3].rfind("2 200 2 ", 0), 0u) << lines[3];
+  EXPECT_NE(lines[2].find("(300, 3) (300,) (30, 2) (30, 2) 1"), std::string::npos) << lines[2];
 }
 
 TEST(RunFile, ReopenDropsFramesFromTheResumePointOn) {

@@ -29,6 +29,10 @@ RunFrame make_frame(const std::string& run, std::uint32_t index, std::size_t n, 
   f.frame.label = frame_label(run, index);
   f.frame.particle_count = n;
   for (std::size_t k = 0; k < n; ++k) f.frame.particles.push_back({u(rng), u(rng), std::fabs(u(rng))});
+  if (index % 3 == 1) {  // every third frame is 3D
+    f.frame.dimension = 3;
+    for (Particle& p : f.frame.particles) p.z = u(rng);
+  }
   for (std::size_t k = 0; k < m; ++k) f.frame.contacts.push_back({pick(rng), pick(rng), u(rng), std::fabs(u(rng))});
   for (std::size_t k = 0; k < 7; ++k) f.wall_contacts.push_back({pick(rng), u(rng), std::fabs(u(rng))});
   return f;
@@ -235,24 +239,41 @@ TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {
     std::uint32_t pairs[3] = {0, 1, 2};
     double forces[2] = {1.0, 0.5};
     bad.particle_count = 3;
+    bad.dimension = 2;
     bad.contact_pairs = {3, 3, pairs, false};
     bad.contact_forces = {2, 2, forces, false};
+    if (dds_write(writer, &bad) != DDS_RETCODE_OK) throw std::runtime_error("raw write failed");
+    // A 3D frame whose z does not cover its particles, then a frame of dimension 5.
+    double xyr[9] = {0, 0, 0.5, 1, 0, 0.5, 0, 1, 0.5}, z[2] = {0.25, 0.75};
+    bad.frame = 1;
+    bad.dimension = 3;
+    bad.contact_pairs = {2, 2, pairs, false};
+    bad.particles = {9, 9, xyr, false};
+    bad.particle_z = {2, 2, z, false};
+    if (dds_write(writer, &bad) != DDS_RETCODE_OK) throw std::runtime_error("raw write failed");
+    bad.frame = 2;
+    bad.dimension = 5;
+    bad.particle_z = {0, 0, nullptr, false};
     if (dds_write(writer, &bad) != DDS_RETCODE_OK) throw std::runtime_error("raw write failed");
     dds_wait_for_acks(writer, DDS_SECS(10));
     p.publish(make_frame("fine", 0, 10, 12));
   });
   dds::FrameSubscriber sub(Publisher::domain());
   dds::Received got = collect(sub, 1, std::chrono::seconds(30));
-  if (got.malformed.empty()) {
-    dds::Received more = collect(sub, 1, std::chrono::seconds(2));
-    got.malformed = more.malformed;
+  for (int k = 0; k < 10 && got.malformed.size() < 3; ++k) {
+    dds::Received more = collect(sub, 1, std::chrono::seconds(1));
+    for (auto& m : more.malformed) got.malformed.push_back(std::move(m));
   }
   EXPECT_EQ(pub.finish(), 0);
   ASSERT_EQ(got.frames.size(), 1u);
   expect_bit_exact(make_frame("fine", 0, 10, 12), got.frames[0]);
-  ASSERT_EQ(got.malformed.size(), 1u);
+  ASSERT_EQ(got.malformed.size(), 3u);
   EXPECT_NE(got.malformed[0].find("run broken frame 0"), std::string::npos) << got.malformed[0];
   EXPECT_NE(got.malformed[0].find("contact arrays disagree"), std::string::npos) << got.malformed[0];
+  EXPECT_NE(got.malformed[1].find("run broken frame 1: 2 z values for 3 particles"), std::string::npos)
+      << got.malformed[1];
+  EXPECT_NE(got.malformed[2].find("run broken frame 2: dimension 5 is neither 2 nor 3"), std::string::npos)
+      << got.malformed[2];
 }
 
 }  // namespace
