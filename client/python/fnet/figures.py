@@ -9,7 +9,7 @@ be checked against what was served: "contacts", "created", "broken", "grains", "
 Lengths are in d, the mean grain diameter (fnet-simd's unit of length, and that of the LAMMPS
 runs fnet reads); forces in units of the mean force of the network they belong to.
 
-A 3D frame (`frame.dimension` 3; its particles x, y, r, z) is drawn as a slab seen from +z: the
+A 3D frame (`frame.dimension` 3, each grain's z in `frame.particle_z`) is drawn as a slab seen from +z: the
 contacts whose contact point lies within `slab` d of the middle z, projected on xy, and each
 sphere's part inside the slab as a disc ("slab" gid: the slab's bounds); or, with
 `projection=True`, every contact projected on xy. Against rho, a 3D run's axis says that rho is
@@ -181,12 +181,12 @@ def dimension_of(frame_or_series, dimension=None):
 
 
 def _zs(frame):
-    """The grains' z: a 3D frame's particles have a fourth column."""
-    p = frame.particles
-    if p.shape[1] < 4:
-        raise ValueError(f"frame {frame.get('index')}: a 3D frame's particles are x, y, r, z (it has {p.shape[1]} "
-                         f"columns)")
-    return p[:, 3]
+    """The grains' z: a 3D frame's particle_z (fnet.store.Frame)."""
+    z = frame.get("particle_z")
+    if z is None or len(z) != len(frame.particles):
+        raise ValueError(f"frame {frame.get('index')}: a 3D frame needs particle_z, the z of each of its "
+                         f"{len(frame.particles)} particles")
+    return np.asarray(z, dtype=np.float64)
 
 
 def contact_points(frame, pairs):

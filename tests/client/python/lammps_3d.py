@@ -3,7 +3,7 @@
 gran/hooke/history, either settled under gravity along -y in a
 box with granular walls (one frame with a force gradient in y), or compressed through jamming in
 a periodic box by fix deform (a run of frames). The dumps are read here into fnet.store.Frame
-(particles x, y, r, z; atom id k is grain k - 1) or written as a run folder of contacts CSVs
+(particles x, y, r and particle_z; atom id k is grain k - 1) or written as a run folder of contacts CSVs
 (proto/frames.md) with the volume fraction as rho."""
 
 import subprocess
@@ -121,7 +121,7 @@ def settled_frame(folder, seed=4711, steps=25000):
     height = float((y + r).max())
     return Frame(index=0, run="lammps-3d-settled", step=steps, time=0.0, dimension=3,
                  rho=float(np.sum(4 / 3 * np.pi * r ** 3)) / (7 * 7 * height), z=2 * len(pairs) / len(r),
-                 particles=np.column_stack([x, y, r, z]), contact_pairs=pairs, contact_forces=forces,
+                 particles=np.column_stack([x, y, r]), particle_z=z, contact_pairs=pairs, contact_forces=forces,
                  wall_contact_particles=np.zeros(0, dtype=np.int64), wall_contact_forces=np.zeros((0, 2)))
 
 

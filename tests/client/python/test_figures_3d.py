@@ -42,7 +42,7 @@ def canonical(segments, values):
 def test_a_slab_draws_exactly_the_contacts_whose_contact_point_lies_in_it(settled, tmp_path):
     f = settled
     assert len(f.particles) > 400 and len(f.contact_pairs) > 800, "a packing, not a gas"
-    p = f.particles
+    p = np.column_stack([f.particles, f.particle_z])  # x, y, r, z
     forces = np.abs(f.contact_forces[:, 0])
     network = forces > 0
     pairs, values = f.contact_pairs[network], forces[network] / forces[network].mean()
@@ -99,8 +99,8 @@ def test_a_thicker_slab_and_the_projection_draw_more(settled, tmp_path):
 
 def small_frame():
     """Three spheres of radius 0.5 at z 0, 1.3 and 2, the first two touching along z."""
-    return Frame(index=4, run="hand", dimension=3, rho=0.5, z=0.67,
-                 particles=np.array([[0.0, 0.0, 0.5, 0.0], [0.0, 0.1, 0.5, 0.95], [3.0, 0.0, 0.5, 2.0]]),
+    return Frame(index=4, run="hand", dimension=3, rho=0.5, z=0.67, particle_z=np.array([0.0, 0.95, 2.0]),
+                 particles=np.array([[0.0, 0.0, 0.5], [0.0, 0.1, 0.5], [3.0, 0.0, 0.5]]),
                  contact_pairs=np.array([[0, 1]]), contact_forces=np.array([[2.0, 0.5]]))
 
 
@@ -122,8 +122,8 @@ def test_slab_discs_and_contact_points_by_hand():
         figures.network(f, walls={"box": 10.0, "wall_diameter": 1.0})
     with pytest.raises(ValueError, match="network_change draws 2D frames"):
         figures.network_change(f, f)
-    with pytest.raises(ValueError, match="x, y, r, z"):
-        figures.network(Frame(f, particles=f.particles[:, :3]))
+    with pytest.raises(ValueError, match="needs particle_z"):
+        figures.network(Frame({k: v for k, v in f.items() if k != "particle_z"}))
 
 
 @pytest.fixture(scope="module")
