@@ -70,6 +70,12 @@ TEST(Service3D, BlocksFindThePlantedCellAndExplainedGrainsCarryTheirZ) {
   wait_for_frames(server.port, "fcc3d", 3);
   client::RpcClient rpc("127.0.0.1", server.port);
 
+  // The run is listed, and its series served, as 3D: its rho is a volume fraction.
+  const json runs = rpc.call("runs.list", json::object());
+  ASSERT_EQ(runs["runs"].size(), 1u) << runs.dump();
+  EXPECT_EQ(runs["runs"][0]["dimension"], 3) << runs.dump();
+  EXPECT_EQ(rpc.call("series.get", {{"run", "fcc3d"}, {"metric", "bottleneck"}})["dimension"], 3);
+
   for (const int dim : {0, 1}) {
     SCOPED_TRACE("PD" + std::to_string(dim));
     const json got = rpc.call(
