@@ -2,7 +2,8 @@
 
 usage: gudhi_diagram.py CONTACTS.csv PARTICLES.csv OUT.json
 
-Reads the two CSVs (numpy.loadtxt, columns found by the header), normalizes |fn| by its mean over
+Reads the two CSVs (numpy.loadtxt, columns found by the header), normalizes |fn| (diagram_document
+with column "ft": the tangential network) by its mean over
 contacts with force > 0, builds the flag complex of the contact graph in a SimplexTree (values
 negated: GUDHI filters by sublevel sets; insert_batch for vertices and edges, expansion(2)),
 computes persistence over Z/2 and writes the diagram document {"pd0", "pd1", "vertices", "edges",
@@ -29,8 +30,9 @@ def superlevel(intervals):
     return [list(p) for p in out]
 
 
-def main(contacts_csv, particles_csv, out_json):
-    contacts = columns(contacts_csv, ["i", "j", "fn"])
+def diagram_document(contacts_csv, particles_csv, column="fn"):
+    """The diagram document of the network of one force column, as fnet-analyze diagram writes it."""
+    contacts = columns(contacts_csv, ["i", "j", column])
     n = len(columns(particles_csv, ["id"]))
     force = np.abs(contacts[:, 2])
     keep = force > 0
@@ -55,6 +57,11 @@ def main(contacts_csv, particles_csv, out_json):
         "edges": edges,
         "triangles": tree.num_simplices() - n - edges,
     }
+    return document
+
+
+def main(contacts_csv, particles_csv, out_json):
+    document = diagram_document(contacts_csv, particles_csv)
     with open(out_json, "w") as f:
         json.dump(document, f, separators=(",", ":"))
 
