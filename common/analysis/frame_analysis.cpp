@@ -85,14 +85,14 @@ DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetr
 }
 
 StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current,
-                             EssentialConvention essential, int threads) {
+                             EssentialConvention essential, int threads, double delta) {
   StepDistances out;
   const auto measure = [&](std::size_t k) {
     const StoredSeries& s = kStoredSeries[k];
     const double start = thread_cpu_seconds();
-    out.value[k] =
-        diagram_distance(diagram_of(previous, s.force, s.dim), diagram_of(current, s.force, s.dim), s.metric, essential)
-            .value;
+    out.value[k] = diagram_distance(diagram_of(previous, s.force, s.dim), diagram_of(current, s.force, s.dim),
+                                    distance_metric(s.metric), essential, delta)
+                       .value;
     out.seconds[k] = thread_cpu_seconds() - start;
   };
   if (threads <= 1) {

@@ -16,7 +16,9 @@ DiagramOutcome DiagramJob::run() const {
   return out;
 }
 
-DistanceOutcome DistanceJob::run() const { return {index, step_distances(*previous, *current, essential, threads)}; }
+DistanceOutcome DistanceJob::run() const {
+  return {index, step_distances(*previous, *current, essential, threads, delta)};
+}
 
 RunPipeline::RunPipeline(std::chrono::milliseconds gap_timeout, EssentialConvention essential)
     : gap_timeout_(gap_timeout), essential_(essential) {}

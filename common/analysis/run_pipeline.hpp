@@ -57,7 +57,8 @@ struct DistanceJob {
   std::uint32_t index = 0;
   std::shared_ptr<const FrameDiagramSet> previous, current;
   EssentialConvention essential = EssentialConvention::floor;
-  int threads = 1;  // > 1: the twelve distances shared among that many threads (step_distances)
+  int threads = 1;   // > 1: the twelve distances shared among that many threads (step_distances)
+  double delta = 0;  // > 0: each distance within that relative error instead of exact
   DistanceOutcome run() const;
 };
 

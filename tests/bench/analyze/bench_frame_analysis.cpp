@@ -7,10 +7,9 @@
 // frame has at most --anchor-max-contacts contacts, the same frame pair goes to GUDHI and Hera
 // through Python (anchor_frame_analysis.py), and both sides' diagrams and distances are compared.
 //   bench_frame_analysis [--grains2d N,...] [--grains3d N,...] [--anchor-max-contacts C] [--seed S]
-//                        [--python PATH] [--no-anchor] [--one-thread] [--limit S]
+//                        [--python PATH] [--no-anchor] [--one-thread] [--limit S] [--delta D]
 #include <malloc.h>
 #include <time.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +22,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -51,14 +51,18 @@ struct FrameFigures {
   bool same2 = true;                     // the two-thread values equal the one-thread ones bit for bit
   std::array<double, kSeries> value{}, seconds{};
   std::array<bool, kSeries> done{};  // false: over the time limit, or not tried (see Options)
-  long distance_peak_kib = 0;        // the largest of the distances' children
+  // With a relative error delta > 0 (Options::delta): the same, and both jobs on two threads.
+  std::array<double, kSeries> approx_value{}, approx_seconds{};
+  std::array<bool, kSeries> approx_done{};
+  double approx_total2_s = 0;
+  long distance_peak_kib = 0;  // the largest of the distances' children
   bool complete() const {
     return std::all_of(done.begin(), done.end(), [](bool d) { return d; });
   }
 };
 
-// One distance of the pair, as step_distances() computes it, in a child of its own: stopped by
-// SIGALRM after limit_s seconds.
+// One distance of the pair, as step_distances() computes it, in a child of its own: stopped after
+// limit_s seconds of CPU time.
 struct OneDistance {
   bool done = false;
   double value = 0, seconds = 0;
@@ -72,7 +76,8 @@ struct Options {
   std::string python = "/usr/bin/python3";
   bool anchor = true;
   bool two_threads = true;
-  unsigned limit_s = 60;  // one distance's time limit; a distance over it is not tried at larger N
+  unsigned limit_s = 60;  // one distance's CPU time limit; a distance over it is not tried at larger N
+  double delta = 0;       // > 0: every distance also within this relative error, against the exact value
 };
 
 std::vector<std::size_t> parse_list(const std::string& text) {
@@ -114,7 +119,7 @@ double thread_cpu_seconds() {
 // anchor.
 FrameFigures measure(int dimension, std::size_t grains, std::uint64_t seed, const std::filesystem::path& dir,
                      std::size_t anchor_max_contacts, bool two_threads, const std::array<bool, kSeries>& try_series,
-                     unsigned limit_s) {
+                     unsigned limit_s, double delta) {
   auto a = std::make_shared<Frame>(testing::synthetic_frame(testing::disordered_packing(dimension, grains, seed)));
   auto b = std::make_shared<Frame>(testing::next_frame(*a, {.seed = seed}));
   a->label = "frame 0", b->label = "frame 1";
@@ -136,25 +141,35 @@ FrameFigures measure(int dimension, std::size_t grains, std::uint64_t seed, cons
   }
   // The distances one by one (as step_distances() takes them), each in a child of this child, so
   // that one over the limit costs only itself.
-  for (std::size_t k = 0; k < kSeries; ++k) {
-    if (!try_series[k]) continue;
-    const StoredSeries& s = kStoredSeries[k];
+  const auto one_distance = [&](const StoredSeries& s, double error) {
     const ChildRun child = run_in_child([&](std::FILE* file) {
-      alarm(limit_s);
+      const rlimit budget{limit_s, limit_s + 1};  // SIGXCPU past limit_s seconds of CPU time ends the child
+      setrlimit(RLIMIT_CPU, &budget);
       OneDistance one;
       const double start = thread_cpu_seconds();
-      one.value =
-          diagram_distance(diagram_of(*previous, s.force, s.dim), diagram_of(*current, s.force, s.dim), s.metric).value;
+      one.value = diagram_distance(diagram_of(*previous, s.force, s.dim), diagram_of(*current, s.force, s.dim),
+                                   distance_metric(s.metric), EssentialConvention::floor, error)
+                      .value;
       one.seconds = thread_cpu_seconds() - start;
       one.done = true;
       std::fwrite(&one, sizeof one, 1, file);
     });
     OneDistance one;
-    if (child.ok && std::fread(&one, sizeof one, 1, child.output) == 1 && one.done) {
-      out.done[k] = true, out.value[k] = one.value, out.seconds[k] = one.seconds;
-    }
+    if (!child.ok || std::fread(&one, sizeof one, 1, child.output) != 1) one.done = false;
     std::fclose(child.output);
-    out.distance_peak_kib = std::max(out.distance_peak_kib, child.peak_rss_kib);
+    one.peak_kib = child.peak_rss_kib;
+    return one;
+  };
+  for (std::size_t k = 0; k < kSeries; ++k) {
+    if (try_series[k]) {
+      const OneDistance one = one_distance(kStoredSeries[k], 0);
+      out.done[k] = one.done, out.value[k] = one.value, out.seconds[k] = one.seconds;
+      out.distance_peak_kib = std::max(out.distance_peak_kib, one.peak_kib);
+    }
+    if (delta > 0) {
+      const OneDistance one = one_distance(kStoredSeries[k], delta);
+      out.approx_done[k] = one.done, out.approx_value[k] = one.value, out.approx_seconds[k] = one.seconds;
+    }
   }
   double sum = 0;
   for (const double t : out.seconds) sum += t;
@@ -170,6 +185,16 @@ FrameFigures measure(int dimension, std::size_t grains, std::uint64_t seed, cons
       (threads == 1 ? out.total1_s : out.total2_s) = seconds_since(start);
       out.same2 = out.same2 && std::memcmp(d.distances.value.data(), out.value.data(), sizeof(double) * kSeries) == 0;
     }
+  }
+  double approx_sum = 0;
+  for (const double t : out.approx_seconds) approx_sum += t;
+  const bool approx_complete = std::all_of(out.approx_done.begin(), out.approx_done.end(), [](bool d) { return d; });
+  if (delta > 0 && two_threads && approx_complete && out.diagram_s + approx_sum <= limit_s) {
+    const auto start = std::chrono::steady_clock::now();
+    const DiagramOutcome again = DiagramJob{1, b, 2}.run();
+    const auto diagrams = std::make_shared<const FrameDiagramSet>(std::move(*again.diagrams));
+    DistanceJob{1, previous, diagrams, EssentialConvention::floor, 2, delta}.run();
+    out.approx_total2_s = seconds_since(start);
   }
   if (out.contacts <= anchor_max_contacts) {
     write_csvs(*a, dir / "a_contacts.csv", dir / "a_particles.csv");
@@ -316,18 +341,57 @@ void print_each(const std::vector<std::pair<int, FrameFigures>>& rows, unsigned 
   }
 }
 
+// With a relative error: each metric's CPU time and the largest error measured against the exact
+// value (where the exact value was computed within the limit).
+void print_approx(const std::vector<std::pair<int, FrameFigures>>& rows, double delta, unsigned limit_s) {
+  std::printf(
+      "\nrelative error delta = %g: CPU ms of each metric's 4 distances (one thread), largest measured error "
+      "(value / exact - 1), 2thr wall: both jobs on two threads\n",
+      delta);
+  std::printf("%3s %8s %10s %10s %10s %10s %10s %10s %10s %10s\n", "dim", "grains", "W1 ms", "W1 err", "W2 ms",
+              "W2 err", "dB ms", "dB err", "total ms", "2thr wall");
+  for (const auto& [dim, f] : rows) {
+    std::printf("%3d %8zu", dim, f.grains);
+    double total = f.diagram_s;
+    bool all = true;
+    for (const Metric metric : {Metric::wasserstein1, Metric::wasserstein2, Metric::bottleneck}) {
+      double sum = 0, err = 0;
+      bool done = true, compared = false;
+      for (std::size_t k = 0; k < kSeries; ++k) {
+        if (kStoredSeries[k].metric != metric) continue;
+        sum += f.approx_done[k] ? f.approx_seconds[k] : limit_s;
+        done = done && f.approx_done[k];
+        if (f.approx_done[k] && f.done[k] && f.value[k] > 0) {
+          err = std::max(err, f.approx_value[k] / f.value[k] - 1);
+          compared = true;
+        }
+      }
+      total += sum;
+      all = all && done;
+      char time[32], error[32] = "-";
+      std::snprintf(time, sizeof time, done ? "%.1f" : ">%.0f", sum * 1e3);
+      if (compared) std::snprintf(error, sizeof error, "%.2e", err);
+      std::printf(" %10s %10s", time, error);
+    }
+    char total_cell[32], two[32] = "-";
+    std::snprintf(total_cell, sizeof total_cell, all ? "%.1f" : ">%.0f", total * 1e3);
+    if (f.approx_total2_s > 0) std::snprintf(two, sizeof two, "%.1f", f.approx_total2_s * 1e3);
+    std::printf(" %10s %10s\n", total_cell, two);
+  }
+}
+
 int run(const Options& opt) {
   // As in bench_persistence: large blocks from the heap, never trimmed (a service's steady state).
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   std::printf(
       "frame pair: disordered synthetic packing (seed %llu) and the frame after it. One thread, CPU time:\n"
-      "the new frame's DiagramJob (diag), its DistanceJob's W1, W2 and bottleneck (dB: each the sum of 4\n"
-      "distances), total = diag + distances; 1thr/2thr wall: wall time of both jobs with threads = 1, then 2\n"
-      "('!': a value differs from the one-thread run's; run where the whole fits the limit); '>': some distances over "
-      "the\n"
-      "limit of %u s, counted at it; peak: ru_maxrss of the size's child or its distances' children;\n"
-      "anchor: GUDHI diagrams + Hera W1/W2 (delta %g) + GUDHI exact bottleneck (Hera above 5000 points)\n",
+      "the new frame's DiagramJob (diag), its distances' W1, W2 and bottleneck (dB: each the sum of 4),\n"
+      "total = diag + distances; 1thr/2thr wall: wall time of both jobs with threads = 1, then 2 (run where\n"
+      "the total fits the limit; '!': a value differs from the one-thread run's); '>': some distances\n"
+      "over the limit of %u CPU s, counted at it; peak: ru_maxrss of the size's child or its distances'\n"
+      "children; anchor: GUDHI diagrams + Hera W1/W2 (delta %g) + GUDHI exact bottleneck (Hera above 5000\n"
+      "points), CPU time\n",
       static_cast<unsigned long long>(opt.seed), opt.limit_s, kHeraDelta);
   print_header();
   bool all_agree = true, all_same2 = true;
@@ -342,7 +406,7 @@ int run(const Options& opt) {
       const std::size_t anchor_max = opt.anchor ? opt.anchor_max_contacts : 0;
       const ChildRun child = run_in_child([&](std::FILE* out) {
         const FrameFigures f =
-            measure(dim, grains, opt.seed, path, anchor_max, opt.two_threads, try_series, opt.limit_s);
+            measure(dim, grains, opt.seed, path, anchor_max, opt.two_threads, try_series, opt.limit_s, opt.delta);
         std::fwrite(&f, sizeof f, 1, out);
       });
       FrameFigures f;
@@ -366,6 +430,7 @@ int run(const Options& opt) {
     }
   }
   print_each(rows, opt.limit_s);
+  if (opt.delta > 0) print_approx(rows, opt.delta, opt.limit_s);
   std::printf("anchor check: %s\n", all_agree ? "every value agrees" : "DISAGREEMENT (see rows)");
   if (!all_same2) std::printf("two threads: VALUES DIFFER from one thread's (rows marked '!')\n");
   return all_agree && all_same2 ? 0 : 1;

@@ -1,4 +1,5 @@
-// The analysis of a frame on two threads gives what it gives on one, bit for bit.
+// The analysis of a frame on two threads gives what it gives on one, bit for bit; the jobs take a
+// thread count and an accepted relative error.
 #include <cstring>
 
 #include <gtest/gtest.h>
