@@ -6,9 +6,15 @@ thermo_values(log, column): {step: value} of a thermo keyword as the log prints 
 value of a step printed twice (the last row of one run, the first of the next).
 test_arguments(description): the command line of the tests that run the page's blocks:
 --fnet-analyze, --lmp (default lmp), --doc (proto/lammps.md), --workdir.
+fresh_workdir(args): the tests' working folder, emptied, and the page's text.
+run_lammps(lmp, work, text): writes `text` as WORK/in.fnet and runs lmp on it there (log in
+WORK/log.lammps); returns what went wrong with the log's end, or "" when it ran.
 """
 import argparse
+import os
 import re
+import shutil
+import subprocess
 
 
 def blocks(doc, tag):
@@ -39,3 +45,21 @@ def test_arguments(description):
     ap.add_argument("--doc", required=True)
     ap.add_argument("--workdir", required=True)
     return ap.parse_args()
+
+
+def fresh_workdir(args):
+    work = os.path.abspath(args.workdir)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    return work, open(args.doc).read()
+
+
+def run_lammps(lmp, work, text):
+    with open(os.path.join(work, "in.fnet"), "w") as f:
+        f.write(text)
+    r = subprocess.run([lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
+                       capture_output=True, text=True)
+    if r.returncode == 0:
+        return ""
+    log = os.path.join(work, "log.lammps")
+    return f"lmp exit {r.returncode}: " + (open(log).read()[-2000:] if os.path.exists(log) else r.stderr[-2000:])

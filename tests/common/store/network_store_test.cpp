@@ -87,11 +87,17 @@ TEST(NetworkStore, EveryFrameKeepsItsNetworkWhileWrittenAfterwardsAndWhenContinu
   }
 }
 
+// A fixture store of an earlier schema (3 frames of a 60-disk run), copied into `dir` to be continued.
+fs::path copy_fixture(const fs::path& fixture, const testing::TempDir& dir) {
+  const fs::path path = dir.path() / fixture.filename();
+  fs::copy_file(fixture, path);
+  return path;
+}
+
 TEST(NetworkStore, AFirstSchemaStoreLoadsAndIsContinuedWithoutNetworks) {
   // Written by fnet-analyze store before the store kept networks (the 60-disk run of run-file-v1).
   testing::TempDir dir;
-  const fs::path path = dir.path() / "legacy-v1.h5";
-  fs::copy_file(kStoreV1, path);
+  const fs::path path = copy_fixture(kStoreV1, dir);
   const StoredRun old = read_store(path);
   EXPECT_EQ(old.schema, kStoreSchemaV1);
   ASSERT_EQ(old.frames.size(), 3u);
@@ -117,8 +123,7 @@ TEST(NetworkStore, AFirstSchemaStoreLoadsAndIsContinuedWithoutNetworks) {
 TEST(NetworkStore, ASecondSchemaStoreLoadsAsTwoDimensionalAndIsContinuedWithAThreeDimensionalFrame) {
   // Written by fnet-analyze store before frames carried a dimension (tests/data/run-file-v2).
   testing::TempDir dir;
-  const fs::path path = dir.path() / "legacy-v2.h5";
-  fs::copy_file(kStoreV2, path);
+  const fs::path path = copy_fixture(kStoreV2, dir);
   const StoredRun old = read_store(path);
   EXPECT_EQ(old.schema, kStoreSchemaV2);
   ASSERT_EQ(old.frames.size(), 3u);

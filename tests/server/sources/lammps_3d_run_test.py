@@ -29,7 +29,6 @@ Exit status 0 when every check holds, 1 otherwise.
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -39,7 +38,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import lammps_inputs  # noqa: E402
 from gudhi_flag import flag_diagrams  # noqa: E402
-from lammps_doc import blocks, commands, test_arguments, thermo_values  # noqa: E402
+from lammps_doc import blocks, commands, fresh_workdir, run_lammps, test_arguments, thermo_values  # noqa: E402
 
 # LAMMPS's own counts beside the page's lines: contacts (twice each), and the page's v_fnet_rho;
 # after fix deform, as the dumps are written.
@@ -146,15 +145,10 @@ def stored_grains(path):
 
 def main():
     a = test_arguments(__doc__)
-    work = os.path.abspath(a.workdir)
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    doc = open(a.doc).read()
-    open(os.path.join(work, "in.fnet"), "w").write(lammps_inputs.spheres("".join(blocks(doc, "lammps 3d")), COUNTS))
-    r = subprocess.run([a.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
-                       capture_output=True, text=True)
-    check(r.returncode == 0, f"lmp ran ({r.returncode})")
-    if r.returncode != 0:
+    work, doc = fresh_workdir(a)
+    wrong = run_lammps(a.lmp, work, lammps_inputs.spheres("".join(blocks(doc, "lammps 3d")), COUNTS))
+    check(not wrong, f"lmp ran {wrong}")
+    if wrong:
         return 1
     env = dict(os.environ, PATH=os.path.dirname(os.path.abspath(a.fnet_analyze)) + os.pathsep + os.environ["PATH"])
     for line in commands(doc, "sh 3d"):

@@ -26,7 +26,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import lammps_inputs  # noqa: E402
-from lammps_doc import blocks, test_arguments, thermo_values  # noqa: E402
+from lammps_doc import blocks, run_lammps, test_arguments, thermo_values  # noqa: E402
 
 # After the disks: squeezed and relaxed, then the page's lines, LAMMPS's own counts, and the test's
 # dumps: the per-atom forces, and the grains with their z (one value in a 2D run).
@@ -101,11 +101,9 @@ def run_style(style, args, doc, work):
     lines = "\n".join(blocks(doc, "lammps"))
     text = lammps_inputs.disks(4711, style) + PROTOCOL.format(doc=lines, rho=blocks(doc, "lammps rho")[0],
                                                               gz=gz_dumps(lines))
-    open(os.path.join(work, "in.fnet"), "w").write(text)
-    r = subprocess.run([args.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        check(False, f"lmp ran ({r.returncode}): {open(os.path.join(work, 'log.lammps')).read()[-2000:]}")
+    wrong = run_lammps(args.lmp, work, text)
+    if wrong:
+        check(False, f"lmp ran: {wrong}")
         return
     env = dict(os.environ, PATH=os.path.dirname(args.fnet_analyze) + os.pathsep + os.environ["PATH"])
     # The blocks that follow a run live are tests/e2e/lammps_follow_test.py's, with a server.

@@ -12,13 +12,12 @@ Exit 0 when every check holds, 1 otherwise.
 """
 import os
 import re
-import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import lammps_inputs  # noqa: E402
-from lammps_doc import test_arguments  # noqa: E402
+from lammps_doc import fresh_workdir, run_lammps, test_arguments  # noqa: E402
 
 failures = []
 
@@ -31,19 +30,14 @@ def check(ok, what):
 
 def main():
     a = test_arguments(__doc__)
-    work = os.path.abspath(a.workdir)
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    doc = open(a.doc).read()
+    work, doc = fresh_workdir(a)
     lines = re.findall(r"```lammps walls\n(.*?)```", doc, re.S)[0].splitlines()
     store_line = re.findall(r"```sh walls\n(.*?)```", doc, re.S)[0].strip()
     fix = next(l for l in lines if l.startswith("fix "))
     dump = next(l for l in lines if l.startswith("dump "))
-    open(os.path.join(work, "in.fnet"), "w").write(lammps_inputs.disks_between_planes(fix, dump))
-    r = subprocess.run([a.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
-                       capture_output=True, text=True)
-    check(r.returncode == 0, f"lmp ran ({r.returncode})")
-    if r.returncode != 0:
+    wrong = run_lammps(a.lmp, work, lammps_inputs.disks_between_planes(fix, dump))
+    check(not wrong, f"lmp ran {wrong}")
+    if wrong:
         return 1
     walls = {int(l.split()[0]): float(l.split()[1]) for l in open(os.path.join(work, "wall_numbers.txt"))
              if not l.startswith("#")}
