@@ -2,13 +2,13 @@
 
 namespace fnet {
 
-ParticleColumns particle_columns(const Frame& frame) {
+ParticleColumns particle_columns(const Frame& frame, bool z_of_2d) {
   ParticleColumns out;
   out.xyr.reserve(3 * frame.particles.size());
-  out.z.reserve(frame.particles.size());
-  for (const Particle& p : frame.particles) {
-    out.xyr.insert(out.xyr.end(), {p.x, p.y, p.r});
-    out.z.push_back(p.z);
+  for (const Particle& p : frame.particles) out.xyr.insert(out.xyr.end(), {p.x, p.y, p.r});
+  if (frame.dimension == 3 || z_of_2d) {
+    out.z.reserve(frame.particles.size());
+    for (const Particle& p : frame.particles) out.z.push_back(p.z);
   }
   return out;
 }

@@ -12,10 +12,11 @@ namespace fnet {
 
 struct ParticleColumns {
   std::vector<double> xyr;  // x, y, r per particle
-  std::vector<double> z;    // z per particle
+  std::vector<double> z;    // z per particle; empty for a 2D frame when z_of_2d is false
 };
 
-ParticleColumns particle_columns(const Frame& frame);
+// z_of_2d: whether a 2D frame's z (every one 0) is wanted too, as the stores keep it.
+ParticleColumns particle_columns(const Frame& frame, bool z_of_2d);
 
 // Fills frame.particles from `xyr` (3 values per particle) and `z`: one value per particle, or
 // none (every z is 0). Returns what is wrong, or an empty string when nothing is.

@@ -247,7 +247,7 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   const auto dimension = static_cast<std::uint8_t>(f.dimension);
   if (f.network) {
     const Frame& net = *f.network;
-    const ParticleColumns particles = particle_columns(net);
+    const ParticleColumns particles = particle_columns(net, true);
     std::vector<double> forces;
     std::vector<std::uint32_t> pairs;
     pairs.reserve(2 * net.contacts.size());

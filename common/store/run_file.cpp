@@ -90,7 +90,7 @@ hid_t RunFileWriter::set(const char* name) const { return sets_.at(name).get(); 
 
 void RunFileWriter::append(const RunFrame& rf) {
   const Frame& f = rf.frame;
-  const ParticleColumns particles = particle_columns(f);
+  const ParticleColumns particles = particle_columns(f, true);
   std::vector<std::uint32_t> pairs;
   std::vector<double> forces;
   for (const Contact& c : f.contacts) {

@@ -153,8 +153,7 @@ void FramePublisher::publish(const RunInfo& info) {
 
 void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
   const Frame& f = frame.frame;
-  ParticleColumns particles = particle_columns(f);
-  if (f.dimension != 3) particles.z.clear();  // a 2D frame's z is 0: not sent
+  ParticleColumns particles = particle_columns(f, false);  // a 2D frame's z is 0: not sent
   std::vector<std::uint32_t> pairs(2 * f.contacts.size());
   std::vector<double> forces(2 * f.contacts.size());
   for (std::size_t k = 0; k < f.contacts.size(); ++k) {
