@@ -87,7 +87,7 @@ std::string kind_name(ForceKind kind) { return std::string(to_string(kind)); }
 TEST(SyntheticOracle, TheNextFrameOfAPackingHasTheSameDiagramsAsGudhi) {
   for (const int dimension : {2, 3}) {
     const Frame next = next_frame(synthetic_frame(disordered_packing(dimension, 2000, 3)), {.seed = 3});
-    for (const ForceKind kind : kForces) expect_same_as_gudhi(next, kind);
+    for (const ForceKind kind : {ForceKind::normal, ForceKind::tangential}) expect_same_as_gudhi(next, kind);
   }
 }
 
