@@ -450,7 +450,8 @@ int main(int argc, char** argv) {
       "seed", po::value(&opt.seed), "seed of the synthetic packings")(
       "python", po::value(&opt.python), "Python with gudhi")("no-anchor", po::bool_switch(), "skip GUDHI and Hera")(
       "one-thread", po::bool_switch(), "skip the two-thread run")("limit", po::value(&opt.limit_s),
-                                                                  "seconds one distance may take (default 60)");
+                                                                  "CPU seconds one distance may take (default 60)")(
+      "delta", po::value(&opt.delta), "also every distance within this relative error, against the exact one");
   po::variables_map vm;
   po::store(po::parse_command_line(argc, argv, desc), vm);
   po::notify(vm);
