@@ -201,6 +201,12 @@ std::uint32_t FramePublisher::matched_frame_readers() const {
   return status.current_count;
 }
 
+std::uint32_t FramePublisher::lost_frame_readers() const {
+  dds_publication_matched_status_t status{};
+  check(dds_get_publication_matched_status(frame_writer_, &status), "dds_get_publication_matched_status");
+  return status.total_count - status.current_count;
+}
+
 bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
   const dds_return_t a = dds_wait_for_acks(info_writer_, timeout);
   const dds_return_t b = dds_wait_for_acks(frame_writer_, timeout);

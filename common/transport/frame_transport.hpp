@@ -27,6 +27,10 @@ class FramePublisher {
   void publish(const RunFrame& frame, dds_duration_t give_up = DDS_SECS(600));
 
   std::uint32_t matched_frame_readers() const;
+  // Frame readers matched at some point that are no longer: gone, or silent for longer than the
+  // DDS lease (10 s by default). A writer does not wait for them: what they had not acknowledged
+  // is theirs again only if they come back while this publisher still lives.
+  std::uint32_t lost_frame_readers() const;
   // Blocks until every matched reader acknowledged everything written, or timeout; true if all did.
   bool wait_for_acks(dds_duration_t timeout) const;
 

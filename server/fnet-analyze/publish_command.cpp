@@ -13,30 +13,39 @@
 namespace po = boost::program_options;
 
 namespace fnet::analyze {
+namespace {
+constexpr int kNotDelivered = 3;
+}
 
 int publish_command(const std::vector<std::string>& args) {
   const std::vector<sources::SourceKind> kinds = sources::run_kinds();
   po::options_description options(
       "usage: fnet-analyze publish " + sources::run_usage(kinds) +
       " [--ensemble E] [--rate FPS]\n"
-      "       [--domain D]\n\n"
+      "       [--domain D] [--ack-timeout S]\n\n"
       "Publishes the run's announcement and every frame on the DDS topics fnet_RunInfo and\n"
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
-      "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n\n"
+      "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n"
+      "Exit code 3: a matched reader had not acknowledged every frame after --ack-timeout seconds,\n"
+      "or went away during the run: it may lack frames.\n\n"
       "options");
   double rate = 0;
   int domain = 0;
-  double linger = 0, wait_for_reader = 10;
+  double linger = 0, wait_for_reader = 10, ack_timeout = 600;
   options.add_options()("help,h", "show this help");
   sources::add_run_options(kinds, options);
   options.add_options()("rate", po::value(&rate)->default_value(0), "frames per second (0: as fast as possible)")(
       "domain", po::value(&domain)->default_value(0), "DDS domain id")(
       "wait-for-reader", po::value(&wait_for_reader)->default_value(10),
       "seconds to wait for a subscriber (e.g. fnet-server) to be discovered before publishing; 0: don't")(
+      "ack-timeout", po::value(&ack_timeout)->default_value(ack_timeout),
+      "seconds to wait at the end until every matched reader acknowledged every frame (a busy fnet-server "
+      "takes frames only as fast as it analyzes them)")(
       "linger", po::value(&linger)->default_value(0),
       "seconds to keep serving late subscribers from the durability history after the last frame");
   const auto vm = parse_options(options, args);
   if (!vm) return 0;
+  if (!(ack_timeout >= 0) || ack_timeout > 1e6) throw po::error("--ack-timeout must be between 0 and 1e6 seconds");
   const std::unique_ptr<sources::FrameSource> source = sources::open_run(kinds, *vm);
   const RunInfo& info = source->announcement();
   dds::FramePublisher publisher(static_cast<dds_domainid_t>(domain));
@@ -54,9 +63,19 @@ int publish_command(const std::vector<std::string>& args) {
     publisher.publish(*frame);
     ++published;
   }
-  publisher.wait_for_acks(DDS_SECS(30));
+  const bool acknowledged = publisher.wait_for_acks(static_cast<dds_duration_t>(ack_timeout * 1e9));
   std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << published << " frames published, "
             << publisher.matched_frame_readers() << " reader(s) matched\n";
+  const std::uint32_t lost = publisher.lost_frame_readers();
+  if (lost > 0)
+    std::cerr << "fnet-analyze publish: error: run " << info.run_id << ": " << lost
+              << " reader(s) went away during the run (stopped, or silent longer than the DDS lease): they may "
+                 "lack frames\n";
+  if (!acknowledged)
+    std::cerr << "fnet-analyze publish: error: run " << info.run_id
+              << ": not every frame was acknowledged by every matched reader within --ack-timeout " << ack_timeout
+              << " s; the frames it has not acknowledged may not have reached it\n";
+  if (lost > 0 || !acknowledged) return kNotDelivered;
   if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
   return 0;
 }

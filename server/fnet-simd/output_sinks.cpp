@@ -58,14 +58,17 @@ void DdsSink::operator()(const RunFrame& frame) {
   reached_ = reached_ || subscriber_now();
 }
 
-void DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
-  publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
+Delivery DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
+  Delivery delivery;
+  delivery.acknowledged = publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
+  delivery.lost_readers = publisher_.lost_frame_readers();  // before lingering: one may leave then
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger_seconds);
   while (std::chrono::steady_clock::now() < until && !should_stop()) {
     reached_ = reached_ || subscriber_now();
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   reached_ = reached_ || subscriber_now();
+  return delivery;
 }
 
 RunFileSink::RunFileSink(const std::filesystem::path& path, const RunInfo& info, bool resume, std::size_t first_frame)

@@ -2,6 +2,7 @@
 // and the HDF5 run file. Both take the shared RunFrame, which run_frame() makes once per snapshot.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -24,6 +25,12 @@ RunFrame run_frame(const FrameSnapshot& snapshot);
 // them), so that the folder names its origin wherever it is copied.
 void write_csv_provenance(const std::filesystem::path& dir, const RunInfo& info);
 
+// How the end of a run reached the DDS subscribers.
+struct Delivery {
+  bool acknowledged = true;        // every matched subscriber acknowledged every frame in time
+  std::uint32_t lost_readers = 0;  // subscribers matched during the run and gone since
+};
+
 // Publishes the run's announcement on construction and every frame handed to it.
 class DdsSink {
  public:
@@ -32,7 +39,7 @@ class DdsSink {
   // At the end of a run: waits (bounded) until every matched reader has every frame, then keeps
   // serving late readers from the durability history for `linger` seconds.
   // Stops lingering early once should_stop() is true.
-  void finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
+  Delivery finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
   // Whether any frame reader was matched at a frame's publication or during finish().
   bool reached_a_subscriber() const { return reached_; }
   bool subscriber_now() const { return publisher_.matched_frame_readers() > 0; }

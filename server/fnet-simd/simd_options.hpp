@@ -15,7 +15,7 @@ namespace fnet::sim {
 struct SimdOptions {
   Params params;
   std::string config, export_dir, checkpoint_path, run_id, ensemble, lammps_data, out_file;
-  double checkpoint_interval = 60, linger = 0, ack_timeout = 60;
+  double checkpoint_interval = 60, linger = 0, ack_timeout = 600;
   int domain = 0;
   unsigned threads = 1;
   int events_fd = -1;                                 // set by the ensemble that started this run

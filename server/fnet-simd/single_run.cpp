@@ -151,17 +151,31 @@ int run_single(SimdOptions options, const std::atomic<bool>& stop) {
                  static_cast<long long>(sim.step - steps_before), seconds, steps / seconds,
                  steps * static_cast<double>(sim.n) / seconds, sim.n, threads, threads == 1 ? "" : "s");
   run_file.reset();   // closed now: readers need not wait while late DDS subscribers are served
-  bool lost = false;  // DDS was the only output and no subscriber ever took a frame
+  bool lost = false;  // DDS was the only output and a subscriber lacks frames, or none ever matched
   if (dds) {
     if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");
-    dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
-    lost = dds_only && !dds->reached_a_subscriber();
-    if (lost)
+    const Delivery delivery = dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
+    const char* severity = dds_only ? "error" : "warning";
+    const char* kept = dds_only ? "" : " (the run's --out or --export-csv has them)";
+    if (delivery.lost_readers > 0)
+      std::fprintf(stderr,
+                   "fnet-simd: %s: %u DDS subscriber(s) went away during the run (stopped, or silent longer than "
+                   "the DDS lease): they may lack frames%s\n",
+                   severity, delivery.lost_readers, kept);
+    if (!delivery.acknowledged)
+      std::fprintf(stderr,
+                   "fnet-simd: %s: a DDS subscriber had not acknowledged every frame after --ack-timeout %g s: the "
+                   "frames it has not acknowledged may not have reached it%s\n",
+                   severity, ack_timeout, kept);
+    lost = dds_only && (delivery.lost_readers > 0 || !delivery.acknowledged);
+    if (dds_only && !dds->reached_a_subscriber()) {
+      lost = true;
       std::fprintf(stderr,
                    "fnet-simd: error: no DDS subscriber matched on domain %d during the run and there was no --out "
                    "or --export-csv: its frames were lost (is fnet-server running with --domain %d and the same "
                    "CYCLONEDDS_URI?)\n",
                    domain, domain);
+    }
   }
   if (!finished) {
     if (o.checkpoint) {
