@@ -27,7 +27,10 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "port", po::value(&o.port)->default_value(o.port),
       "TCP port of the JSON API (0: any free port, printed at start)")(
       "bind", po::value(&o.bind)->default_value(o.bind), "address to listen on (loopback by default)")(
-      "threads", po::value(&o.threads)->default_value(o.threads), "analysis threads")(
+      "http-port", po::value<unsigned short>(),
+      "TCP port of the dashboard: the page and the JSON API over a WebSocket, on the --bind address (0: any "
+      "free port, printed at start; default: no dashboard)")("threads", po::value(&o.threads)->default_value(o.threads),
+                                                             "analysis threads")(
       "domain", po::value(&o.domain)->default_value(o.domain), "DDS domain id")(
       "max-in-flight", po::value(&o.max_in_flight)->default_value(o.max_in_flight),
       "frames held for analysis at once; beyond it DDS makes the simulation wait (about 150 KB per "
@@ -51,6 +54,7 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       return 0;
     }
     po::notify(vm);
+    if (vm.count("http-port")) o.http_port = vm["http-port"].as<unsigned short>();
     if (o.threads == 0 || o.max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
     boost::system::error_code bad_address;
     boost::asio::ip::make_address(o.bind, bad_address);

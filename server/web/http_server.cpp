@@ -1,0 +1,26 @@
+#include "server/web/http_server.hpp"
+
+#include <string>
+
+#include "server/web/http_session.hpp"
+
+namespace fnet::web {
+
+namespace {
+const std::string kBusy =
+    "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\nContent-Length: "
+    "21\r\n\r\ntoo many connections\n";
+}
+
+HttpServer::HttpServer(boost::asio::io_context& io, const std::string& address, unsigned short port,
+                       rpc::Handler handler, rpc::ServerLimits limits)
+    : handler_(std::move(handler)),
+      limits_(limits),
+      listener_(io, address, port, limits_.max_connections, kBusy,
+                [this](boost::asio::ip::tcp::socket socket, rpc::Strand strand, std::shared_ptr<void> slot) {
+                  std::make_shared<HttpSession>(std::move(socket), std::move(strand), limits_, handler_,
+                                                std::move(slot))
+                      ->start();
+                }) {}
+
+}  // namespace fnet::web
