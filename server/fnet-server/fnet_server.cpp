@@ -75,9 +75,10 @@ int main(int argc, char** argv) {
     context.max_subscriptions_per_connection = o.max_subscriptions;
     context.offload = [&pool](std::function<void()> work) { boost::asio::post(pool, std::move(work)); };
     const fnet::rpc::Handler api = make_api(context);
-    fnet::rpc::Server server(io, o.bind, o.port, api, rpc_limits(o));
+    const fnet::rpc::Access access{o.token};
+    fnet::rpc::Server server(io, o.bind, o.port, api, rpc_limits(o), access);
     std::optional<fnet::web::HttpServer> dashboard;
-    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, rpc_limits(o));
+    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, rpc_limits(o), access);
     context.connections = [&server, &dashboard] {
       return server.connections() + (dashboard ? dashboard->connections() : 0);
     };

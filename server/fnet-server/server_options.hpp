@@ -12,6 +12,7 @@ struct ServerOptions {
   std::string data_dir, bind = "127.0.0.1";
   unsigned short port = 7707;
   std::optional<unsigned short> http_port;  // the dashboard's; none: not served
+  std::string token;                        // asked of every connection (--token-file); empty: none
   unsigned threads = 1;                     // analysis threads, >= 1; the default is the hardware's
   int domain = 0;                           // DDS domain id
   std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,

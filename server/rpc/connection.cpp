@@ -80,11 +80,13 @@ class Batch {
 }  // namespace
 
 Connection::Connection(Strand strand, std::string terminator, const ServerLimits& limits, const Handler& handler,
-                       std::function<void()> on_end)
+                       const Access& access, bool authenticated, std::function<void()> on_end)
     : strand_(std::move(strand)),
       limits_(limits),
       terminator_(std::move(terminator)),
       handler_(handler),
+      access_(access),
+      authenticated_(authenticated || !access.required()),
       on_end_(std::move(on_end)),
       id_(next_connection_id++) {}
 
@@ -107,38 +109,8 @@ void Connection::on_close(std::function<void()> fn) {
 }
 
 void Connection::take_message(std::string_view text) {
-  if (text.find_first_not_of(" \t\r\n") != std::string_view::npos) {
-    json request;
-    bool parsed = true;
-    try {
-      request = json::parse(text);
-    } catch (const json::parse_error& e) {
-      // The library's text ("[json.exception.parse_error.101] ...") is not for users; the byte is.
-      send(error_response(nullptr, kParseError,
-                          "parse error: the request is not valid JSON (at byte " + std::to_string(e.byte) + ")"));
-      parsed = false;
-    }
-    const auto self = shared_from_this();
-    if (parsed && request.is_array() && request.empty()) {
-      send(error_response(nullptr, kInvalidRequest, "empty batch"));
-    } else if (parsed && request.is_array()) {
-      begin_call();
-      const auto batch = std::make_shared<Batch>(request.size());
-      for (std::size_t k = 0; k < request.size(); ++k)
-        dispatch(request[k], handler_, self, [self, batch, k](json one) {
-          const std::optional<json> all = batch->put(k, std::move(one));
-          if (!all) return;
-          if (!all->empty()) self->send(*all);
-          self->end_call();
-        });
-    } else if (parsed) {
-      begin_call();
-      dispatch(request, handler_, self, [self](json one) {
-        if (!one.is_null()) self->send(one);
-        self->end_call();
-      });
-    }
-  }
+  const bool blank = text.find_first_not_of(" \t\r\n") == std::string_view::npos;
+  if (!blank && !run_message(text)) return;  // refused: the connection finishes
   {
     // A client with max_pending_calls calls unanswered is read again when one ends.
     std::lock_guard lock(mutex_);
@@ -146,6 +118,73 @@ void Connection::take_message(std::string_view text) {
     if (read_paused_) return;
   }
   if (!closed_) read_next();
+}
+
+bool Connection::run_message(std::string_view text) {
+  json request;
+  std::optional<json> parse_error;
+  try {
+    request = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // The library's text ("[json.exception.parse_error.101] ...") is not for users; the byte is.
+    parse_error = error_response(nullptr, kParseError,
+                                 "parse error: the request is not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  }
+  if (!parse_error && request.is_object() && request.value("method", json()) == "auth") {
+    answer_auth(request);
+    return authenticated_;
+  }
+  if (!authenticated_) {
+    const json id = !parse_error && request.is_object() ? request.value("id", json()) : json();
+    refuse(error_response(id, kUnauthorized,
+                          "unauthorized: this server asks for a token; send "
+                          "{\"jsonrpc\":\"2.0\",\"id\":0,\"method\":\"auth\",\"params\":{\"token\":\"...\"}} first "
+                          "(fnetctl --token-file FILE or FNET_TOKEN; fnet.Client(token=...))",
+                          {{"method", "auth"}}));
+    return false;
+  }
+  if (parse_error) {
+    send(*parse_error);
+    return true;
+  }
+  const auto self = shared_from_this();
+  if (request.is_array() && request.empty()) {
+    send(error_response(nullptr, kInvalidRequest, "empty batch"));
+  } else if (request.is_array()) {
+    begin_call();
+    const auto batch = std::make_shared<Batch>(request.size());
+    for (std::size_t k = 0; k < request.size(); ++k)
+      dispatch(request[k], handler_, self, [self, batch, k](json one) {
+        const std::optional<json> all = batch->put(k, std::move(one));
+        if (!all) return;
+        if (!all->empty()) self->send(*all);
+        self->end_call();
+      });
+  } else {
+    begin_call();
+    dispatch(request, handler_, self, [self](json one) {
+      if (!one.is_null()) self->send(one);
+      self->end_call();
+    });
+  }
+  return true;
+}
+
+void Connection::answer_auth(const json& request) {
+  const json id = request.value("id", json());
+  const json params = request.value("params", json::object());
+  const json* token = params.is_object() && params.contains("token") ? &params["token"] : nullptr;
+  if (!token || !token->is_string()) {
+    if (!authenticated_)
+      return refuse(
+          error_response(id, kUnauthorized, "unauthorized: auth takes params {\"token\": TEXT}", {{"method", "auth"}}));
+    return (void)send(
+        error_response(id, kInvalidParams, "auth takes params {\"token\": TEXT}", {{"parameter", "token"}}));
+  }
+  if (!access_.admits(token->get<std::string>()))
+    return refuse(error_response(id, kUnauthorized, "unauthorized: wrong token", {{"method", "auth"}}));
+  authenticated_ = true;
+  if (request.contains("id")) send(response(id, {{"authenticated", true}}));
 }
 
 void Connection::refuse(const json& error) {

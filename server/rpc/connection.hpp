@@ -21,6 +21,7 @@
 #include <boost/asio.hpp>
 
 #include "proto/json_rpc.hpp"
+#include "server/rpc/access.hpp"
 #include "server/rpc/peer.hpp"
 
 namespace fnet::rpc {
@@ -50,9 +51,10 @@ class Connection : public Peer, public std::enable_shared_from_this<Connection> 
  protected:
   // `terminator` ends each message on the wire ("\n" for lines; none where the transport frames
   // messages); `on_end` runs when the connection is destroyed.
-  // `strand` is the one the socket was accepted on.
+  // `strand` is the one the socket was accepted on. Until a connection has presented the token
+  // `access` asks for (`authenticated` false), its first message must be the auth request.
   Connection(Strand strand, std::string terminator, const ServerLimits& limits, const Handler& handler,
-             std::function<void()> on_end);
+             const Access& access, bool authenticated, std::function<void()> on_end);
 
   // The transport's part, each called on the strand:
   virtual void read_next() = 0;                     // reads one message, then take_message() or an end below
@@ -78,12 +80,18 @@ class Connection : public Peer, public std::enable_shared_from_this<Connection> 
   const ServerLimits& limits_;
 
  private:
+  // Runs one message; false when it refused the connection (no token presented).
+  bool run_message(std::string_view text);
+  // The transports' own method, answered here and never by the Handler: auth presents the token.
+  void answer_auth(const json& request);
   void begin_call();
   void end_call();
   void write_next();
 
   const std::string terminator_;
   const Handler& handler_;
+  const Access& access_;
+  bool authenticated_;  // read and written on the strand
   std::function<void()> on_end_;
   std::mutex mutex_;  // guards the output queue and close callbacks (send() is called from any thread)
   std::deque<std::string> output_;

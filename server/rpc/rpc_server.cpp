@@ -9,8 +9,8 @@ namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
 Session::Session(tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
-                 std::function<void()> on_end)
-    : Connection(std::move(strand), "\n", limits, handler, std::move(on_end)),
+                 const Access& access, std::function<void()> on_end)
+    : Connection(std::move(strand), "\n", limits, handler, access, false, std::move(on_end)),
       socket_(std::move(socket)),
       input_(limits.max_line_bytes + 1) {}
 
@@ -76,12 +76,13 @@ std::string busy_line(std::size_t max_connections) {
 }  // namespace
 
 Server::Server(asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
-               ServerLimits limits)
+               ServerLimits limits, Access access)
     : handler_(std::move(handler)),
       limits_(limits),
+      access_(std::move(access)),
       listener_(io, address, port, limits_.max_connections, busy_line(limits_.max_connections),
                 [this](tcp::socket socket, Strand strand, std::shared_ptr<void> slot) {
-                  std::make_shared<Session>(std::move(socket), std::move(strand), limits_, handler_,
+                  std::make_shared<Session>(std::move(socket), std::move(strand), limits_, handler_, access_,
                                             [slot = std::move(slot)] {})
                       ->start();
                 }) {}

@@ -24,7 +24,7 @@ namespace fnet::rpc {
 class Session final : public Connection {
  public:
   Session(boost::asio::ip::tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
-          std::function<void()> on_end);
+          const Access& access, std::function<void()> on_end);
 
  private:
   std::shared_ptr<Session> self() { return std::static_pointer_cast<Session>(shared_from_this()); }
@@ -45,7 +45,7 @@ class Server {
   // std::runtime_error naming address:port when it cannot (the port taken, say). Beyond
   // max_connections a connection gets an error -32004 line and is closed.
   Server(boost::asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
-         ServerLimits limits = {});
+         ServerLimits limits = {}, Access access = {});
   unsigned short port() const { return listener_.port(); }
   std::size_t connections() const { return listener_.connections(); }
   void stop() { listener_.stop(); }
@@ -53,6 +53,7 @@ class Server {
  private:
   Handler handler_;
   ServerLimits limits_;
+  Access access_;
   Listener listener_;
 };
 

@@ -13,13 +13,14 @@ const std::string kBusy =
 }
 
 HttpServer::HttpServer(boost::asio::io_context& io, const std::string& address, unsigned short port,
-                       rpc::Handler handler, rpc::ServerLimits limits)
+                       rpc::Handler handler, rpc::ServerLimits limits, rpc::Access access)
     : handler_(std::move(handler)),
       limits_(limits),
+      access_(std::move(access)),
       listener_(io, address, port, limits_.max_connections, kBusy,
                 [this](boost::asio::ip::tcp::socket socket, rpc::Strand strand, std::shared_ptr<void> slot) {
-                  std::make_shared<HttpSession>(std::move(socket), std::move(strand), limits_, handler_,
-                                                std::move(slot))
+                  std::make_shared<HttpSession>(std::move(socket), std::move(strand), limits_, handler_, access_,
+                                                listener_.port(), std::move(slot))
                       ->start();
                 }) {}
 

@@ -24,7 +24,7 @@ class HttpServer {
   // Binds to `address`:`port` (port 0 picks a free one) and starts accepting; throws
   // std::runtime_error naming address:port when it cannot.
   HttpServer(boost::asio::io_context& io, const std::string& address, unsigned short port, rpc::Handler handler,
-             rpc::ServerLimits limits = {});
+             rpc::ServerLimits limits = {}, rpc::Access access = {});
   unsigned short port() const { return listener_.port(); }
   std::size_t connections() const { return listener_.connections(); }
   void stop() { listener_.stop(); }
@@ -32,6 +32,7 @@ class HttpServer {
  private:
   rpc::Handler handler_;
   rpc::ServerLimits limits_;
+  rpc::Access access_;
   rpc::Listener listener_;
 };
 

@@ -7,6 +7,7 @@
 
 #include <boost/beast/websocket.hpp>
 
+#include "server/web/http_access.hpp"
 #include "server/web/http_server.hpp"
 #include "server/web/web_assets.hpp"
 #include "server/web/websocket_session.hpp"
@@ -63,11 +64,14 @@ Response answer(const Request& request) {
 }
 
 HttpSession::HttpSession(asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-                         const rpc::Handler& handler, std::shared_ptr<void> slot)
+                         const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
+                         std::shared_ptr<void> slot)
     : stream_(std::move(socket)),
       strand_(std::move(strand)),
       limits_(limits),
       handler_(handler),
+      access_(access),
+      port_(port),
       slot_(std::move(slot)) {}
 
 void HttpSession::start() {
@@ -99,10 +103,19 @@ void HttpSession::on_request(beast::error_code ec) {
     return send(std::move(r));
   }
   Request request = parser_->release();
+  const Admission admission = admit(request, access_, port_);
+  if (admission.verdict == Admission::Verdict::refuse)
+    return send(error(admission.status, request.version(), admission.message));
+  if (admission.verdict == Admission::Verdict::redirect) {
+    Response r = error(http::status::see_other, request.version(), "see " + admission.location);
+    r.set(http::field::location, admission.location);
+    r.set(http::field::set_cookie, admission.set_cookie);
+    return send(std::move(r));
+  }
   if (beast::websocket::is_upgrade(request) && path_of(request.target()) == kRpcPath) {
     stream_.expires_never();
     const auto ws =
-        std::make_shared<WebSocketSession>(std::move(stream_), strand_, limits_, handler_, [slot = slot_] {});
+        std::make_shared<WebSocketSession>(std::move(stream_), strand_, limits_, handler_, access_, [slot = slot_] {});
     ws->accept(std::move(request));
     return;
   }

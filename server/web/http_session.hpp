@@ -1,5 +1,6 @@
 // One HTTP connection of the dashboard: requests read one after another (keep-alive), each
-// answered with an asset, an error status, or, for kRpcPath, handed over to a WebSocket session.
+// admitted or not (http_access.hpp), then answered with an asset, an error status, or, for
+// kRpcPath, handed over to a WebSocket session.
 #pragma once
 
 #include <memory>
@@ -25,7 +26,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   // `slot` is held while the connection lives (its WebSocket session included): the count of
   // connections goes down when the last holder ends.
   HttpSession(boost::asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-              const rpc::Handler& handler, std::shared_ptr<void> slot);
+              const rpc::Handler& handler, const rpc::Access& access, unsigned short port, std::shared_ptr<void> slot);
   void start();
 
  private:
@@ -41,6 +42,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::unique_ptr<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
   const rpc::ServerLimits& limits_;
   const rpc::Handler& handler_;
+  const rpc::Access& access_;
+  const unsigned short port_;  // the server's, which names its token's cookie
   std::shared_ptr<void> slot_;
 };
 

@@ -12,8 +12,8 @@ constexpr std::size_t kReadChunk = 64 << 10;
 }
 
 WebSocketSession::WebSocketSession(beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                                   const rpc::Handler& handler, std::function<void()> on_end)
-    : Connection(std::move(strand), "", limits, handler, std::move(on_end)), ws_(std::move(stream)) {
+                                   const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end)
+    : Connection(std::move(strand), "", limits, handler, access, true, std::move(on_end)), ws_(std::move(stream)) {
   // The bound on a message is ours (read_next), so that its client is told why it is closed.
   ws_.read_message_max(0);
   ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));

@@ -18,8 +18,10 @@ namespace fnet::web {
 
 class WebSocketSession final : public rpc::Connection {
  public:
+  // The upgrade was admitted (http_access.hpp): the connection has presented the token `access`
+  // asks for, if any.
   WebSocketSession(boost::beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                   const rpc::Handler& handler, std::function<void()> on_end);
+                   const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end);
   // Completes the opening handshake that `upgrade` asked for, then reads.
   void accept(boost::beast::http::request<boost::beast::http::string_body> upgrade);
 

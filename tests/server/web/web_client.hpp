@@ -20,16 +20,33 @@ namespace http = beast::http;
 namespace websocket = beast::websocket;
 using tcp = boost::asio::ip::tcp;
 
+// Headers a request carries beyond Host (which `host` replaces when given).
+struct Headers {
+  std::string cookie, origin, host;
+  bool upgrade = false;  // a WebSocket upgrade
+  Headers& with_cookie(std::string v) { return cookie = std::move(v), *this; }
+  Headers& with_origin(std::string v) { return origin = std::move(v), *this; }
+  Headers& with_host(std::string v) { return host = std::move(v), *this; }
+  Headers& as_upgrade() { return upgrade = true, *this; }
+};
+
 // One request on a connection of its own; the response as the server wrote it.
 inline http::response<http::string_body> http_request(unsigned short port, http::verb verb, const std::string& target,
-                                                      const std::string& address = "127.0.0.1",
-                                                      const std::string& cookie = "") {
+                                                      const Headers& headers = {},
+                                                      const std::string& address = "127.0.0.1") {
   boost::asio::io_context io;
   beast::tcp_stream stream(io);
   stream.connect(tcp::endpoint(boost::asio::ip::make_address(address), port));
   http::request<http::string_body> request{verb, target, 11};
-  request.set(http::field::host, address + ":" + std::to_string(port));
-  if (!cookie.empty()) request.set(http::field::cookie, cookie);
+  request.set(http::field::host, headers.host.empty() ? address + ":" + std::to_string(port) : headers.host);
+  if (!headers.cookie.empty()) request.set(http::field::cookie, headers.cookie);
+  if (!headers.origin.empty()) request.set(http::field::origin, headers.origin);
+  if (headers.upgrade) {
+    request.set(http::field::upgrade, "websocket");
+    request.set(http::field::connection, "Upgrade");
+    request.set(http::field::sec_websocket_key, "dGhlIHNhbXBsZSBub25jZQ==");
+    request.set(http::field::sec_websocket_version, "13");
+  }
   request.prepare_payload();
   http::write(stream, request);
   beast::flat_buffer buffer;
