@@ -14,6 +14,7 @@ namespace fnet {
 
 struct AnalyzedFrame {
   FrameHeader header;
+  int dimension = 2;  // the frame's: 2 (disks) or 3 (spheres)
   FrameDiagramSet diagrams;
   std::optional<std::uint32_t> previous;  // the accepted frame the distances are measured from
   StepDistances distances;                // meaningful only with a previous frame

@@ -14,10 +14,14 @@ namespace {
 
 ExplainedSimplex grains_of(const Simplex& s, const Frame& frame) {
   ExplainedSimplex out;
+  out.dimension = frame.dimension;
   for (std::size_t k = 0; k < s.size; ++k) {
     const std::uint32_t v = s.vertices[k];
     out.grains.push_back(v);
-    if (!frame.particles.empty()) out.positions.push_back({frame.particles[v].x, frame.particles[v].y});
+    if (!frame.particles.empty()) {
+      const Particle& p = frame.particles[v];
+      out.positions.push_back({p.x, p.y, p.z});
+    }
   }
   return out;
 }

@@ -20,7 +20,8 @@ namespace fnet {
 // A simplex as grains: one grain (a vertex), two (an edge: a contact) or three (a triangle).
 struct ExplainedSimplex {
   std::vector<std::uint32_t> grains;             // particle indices of the frame, ascending
-  std::vector<std::array<double, 2>> positions;  // (x, y) of each grain; empty for a frame without particles
+  std::vector<std::array<double, 3>> positions;  // (x, y, z) of each grain; empty for a frame without particles
+  int dimension = 2;                             // the frame's: z is 0 in 2D, and not written
   bool operator==(const ExplainedSimplex&) const = default;
 };
 

@@ -43,6 +43,7 @@ RunPipeline::Admission RunPipeline::admit(RunFrame frame, PipelineClock::time_po
   Slot& slot = pending_[index];
   slot.frame = std::make_shared<AnalyzedFrame>();
   slot.frame->header = frame.header;
+  slot.frame->dimension = frame.frame.dimension;
   slot.frame->network = std::make_shared<const Frame>(std::move(frame.frame));
   slot.arrived = now;
   return {Arrival::queued, DiagramJob{index, slot.frame->network}};

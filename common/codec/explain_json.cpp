@@ -8,7 +8,8 @@ nlohmann::json to_json(const ExplainedSimplex& simplex) {
   nlohmann::json out{{"grains", simplex.grains}};
   if (!simplex.positions.empty()) {
     nlohmann::json positions = nlohmann::json::array();
-    for (const auto& [x, y] : simplex.positions) positions.push_back({x, y});
+    for (const auto& [x, y, z] : simplex.positions)
+      positions.push_back(simplex.dimension == 3 ? nlohmann::json{x, y, z} : nlohmann::json{x, y});
     out["positions"] = std::move(positions);
   }
   return out;

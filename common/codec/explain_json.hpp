@@ -1,7 +1,8 @@
 // JSON of an explanation, as `fnet-analyze explain` prints it and distance.get's `explain` carries:
 //   [{"rank": 1, "cost": length, "a": point|null, "b": point|null}, ...]
 //   point   = {"birth", "death" (-1: never dies), "birth_simplex": simplex, "death_simplex": simplex|null}
-//   simplex = {"grains": [ids], "positions": [[x, y], ...]}  (positions absent without a particle table)
+//   simplex = {"grains": [ids], "positions": [[x, y], ...]}  (positions absent without a particle table;
+//             [x, y, z] each in a 3D frame)
 // a or b null: that term's point is matched to the diagonal.
 #pragma once
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 namespace fnet {
 namespace {
@@ -33,16 +34,30 @@ std::string grains_text(const nlohmann::json& p) {
   return simplex_text(p.at("birth_simplex")) + " / " + simplex_text(p.at("death_simplex"));
 }
 
-// "(x, y)": the centre of the grains that create a point's feature; empty without positions.
+// "(x, y)", or "(x, y, z)" in a 3D frame: the centre of the grains that create a point's feature;
+// empty without positions.
 std::string centre_text(const nlohmann::json& p) {
   if (p.is_null() || !p.at("birth_simplex").contains("positions")) return "";
-  double x = 0, y = 0;
   const auto& positions = p.at("birth_simplex").at("positions");
-  for (const auto& xy : positions) x += xy.at(0).get<double>(), y += xy.at(1).get<double>();
+  if (positions.empty()) return "";
+  std::vector<double> sum(positions.at(0).size(), 0.0);
+  for (const auto& at : positions)
+    for (std::size_t axis = 0; axis < sum.size(); ++axis) sum[axis] += at.at(axis).get<double>();
   const double n = static_cast<double>(positions.size());
   std::ostringstream out;
-  out << "(" << number(x / n) << ", " << number(y / n) << ")";
+  const char* separator = "(";
+  for (const double s : sum) out << separator << number(s / n), separator = ", ";
+  out << ")";
   return out.str();
+}
+
+// Whether an answer's positions carry z: its frames are 3D.
+bool has_z(const nlohmann::json& answer) {
+  for (const auto& t : answer.at("explain"))
+    for (const char* side : {"a", "b"})
+      if (!t.at(side).is_null() && t.at(side).at("birth_simplex").contains("positions"))
+        for (const auto& at : t.at(side).at("birth_simplex").at("positions")) return at.size() == 3;
+  return false;
 }
 
 }  // namespace
@@ -55,8 +70,6 @@ std::string explain_where(const nlohmann::json& term) {
   if (a == b) return "a = b " + a;
   return "a " + a + " b " + b;
 }
-
-namespace {}  // namespace
 
 void write_explain_table(std::ostream& out, const nlohmann::json& answer, const std::string& metric_label) {
   out << metric_label << " PD" << answer.at("dim").get<int>() << " " << answer.at("force").get<std::string>() << " ("
@@ -72,7 +85,8 @@ void write_explain_table(std::ostream& out, const nlohmann::json& answer, const 
          "point's feature, in d (one position when both agree)\n";
   char line[400];
   std::snprintf(line, sizeof line, "%4s %12s %26s %26s  %-24s %-24s %s\n", "rank", "cost", "a (birth, death)",
-                "b (birth, death)", "a grains: birth / death", "b grains: birth / death", "where (x, y)");
+                "b (birth, death)", "a grains: birth / death", "b grains: birth / death",
+                has_z(answer) ? "where (x, y, z)" : "where (x, y)");
   out << line;
   for (const auto& t : answer.at("explain")) {
     std::snprintf(line, sizeof line, "%4d %12s %26s %26s  %-24s %-24s %s\n", t.at("rank").get<int>(),

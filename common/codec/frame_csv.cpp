@@ -131,15 +131,26 @@ const char* read_plain_row(std::string_view text, const std::vector<std::size_t>
 template <std::size_t K>
 using ColumnNames = std::array<std::string_view, K>;
 
-// Reads a CSV whose header must contain the columns of one of `forms` (the first it has all of;
-// the error names the first form's missing column); calls reserve(n, form) with an upper bound on
-// the number of rows and the form found, then row(values, line) with the values of those columns, of types T..., in
-// that order. Returns which form the header had. One pass over the file held whole; a row costs no allocation.
-template <class... T, class Reserve, class Row>
-std::size_t read_table(const std::filesystem::path& path, const std::vector<ColumnNames<sizeof...(T)>>& forms,
-                       Reserve reserve, Row row) {
-  constexpr std::size_t K = sizeof...(T);
+// What read_table found in a header: which form, and which of its columns (the optional ones may
+// be missing).
+template <std::size_t K>
+struct TableShape {
   std::size_t form = 0;
+  std::array<bool, K> present{};
+};
+
+// Reads a CSV whose header must contain the first `required` columns of one of `forms` (the first
+// form it has them all of; the error names the first form's missing column), and may contain the
+// others; calls reserve(n, form) with an upper bound on the number of rows and the form found, then
+// row(values, line) with the values of those columns, of types T..., in that order (a column the
+// header lacks is 0). One pass over the file held whole; a row costs no allocation.
+template <class... T, class Reserve, class Row>
+TableShape<sizeof...(T)> read_table(const std::filesystem::path& path,
+                                    const std::vector<ColumnNames<sizeof...(T)>>& forms, std::size_t required,
+                                    Reserve reserve, Row row) {
+  constexpr std::size_t K = sizeof...(T);
+  TableShape<K> shape;
+  std::size_t& form = shape.form;
   const std::optional<FileText> file = FileText::read(path);
   if (!file) throw CsvError(path.string() + ": cannot open file");
   const std::string_view text = file->view();
@@ -156,27 +167,30 @@ std::size_t read_table(const std::filesystem::path& path, const std::vector<Colu
     const auto has = [&](std::string_view name) {
       return std::find(header.begin(), header.end(), name) != header.end();
     };
-    form = static_cast<std::size_t>(
-        std::find_if(forms.begin(), forms.end(),
-                     [&](const ColumnNames<K>& names) { return std::all_of(names.begin(), names.end(), has); }) -
-        forms.begin());
+    form = static_cast<std::size_t>(std::find_if(forms.begin(), forms.end(),
+                                                 [&](const ColumnNames<K>& names) {
+                                                   return std::all_of(names.begin(), names.begin() + required, has);
+                                                 }) -
+                                    forms.begin());
     if (form == forms.size()) {
       std::string expected;
       for (const ColumnNames<K>& names : forms) {
         if (!expected.empty()) expected += " or ";
-        for (std::size_t k = 0; k < K; ++k) {
+        for (std::size_t k = 0; k < required; ++k) {
           if (k) expected += ',';
           expected.append(names[k]);
         }
       }
       const ColumnNames<K>& first = forms.front();
-      const std::string_view missing = *std::find_if(first.begin(), first.end(), [&](auto n) { return !has(n); });
+      const std::string_view missing =
+          *std::find_if(first.begin(), first.begin() + required, [&](auto n) { return !has(n); });
       fail("header lacks column '" + std::string(missing) + "' (expected " + expected + ")");
     }
     slot.assign(header.size(), kUnused);
     for (std::size_t k = 0; k < K; ++k) {
       const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), forms[form][k]) - header.begin());
-      if (slot[c] == kUnused) slot[c] = k;
+      shape.present[k] = c < header.size();
+      if (shape.present[k] && slot[c] == kUnused) slot[c] = k;
     }
     break;
   }
@@ -208,14 +222,16 @@ std::size_t read_table(const std::filesystem::path& path, const std::vector<Colu
         fail("expected " + std::to_string(width) + " fields, found " + std::to_string(c));
       }
       [&]<std::size_t... I>(std::index_sequence<I...>) {
-        ((std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], forms[form][I], fail)),
+        ((shape.present[I] &&
+          (std::get<I>(values) = parse<std::tuple_element_t<I, std::tuple<T...>>>(fields[I], forms[form][I], fail),
+           true)),
          ...);
       }
       (std::index_sequence_for<T...>{});
     }
     row(values, lines.number());
   }
-  return form;
+  return shape;
 }
 
 }  // namespace
@@ -223,9 +239,11 @@ std::size_t read_table(const std::filesystem::path& path, const std::vector<Colu
 ContactsCsv read_contacts_table(const std::filesystem::path& path) {
   ContactsCsv out;
   bool vectors = false;  // then each row's line is kept, for the messages of contacts_from_vectors
-  static const std::vector<ColumnNames<4>> forms{{"i", "j", "fn", "ft"}, {"i", "j", "fx", "fy"}};
-  const std::size_t form = read_table<std::int64_t, std::int64_t, double, double>(
-      path, forms,
+  // fz, the third component of a vector, is optional (a 2D frame's forces lie in its plane); the
+  // magnitudes form ignores it.
+  static const std::vector<ColumnNames<5>> forms{{"i", "j", "fn", "ft", "fz"}, {"i", "j", "fx", "fy", "fz"}};
+  const TableShape<5> shape = read_table<std::int64_t, std::int64_t, double, double, double>(
+      path, forms, 4,
       [&](std::size_t n, std::size_t chosen) {
         out.rows.reserve(n);
         vectors = chosen == 1;
@@ -233,16 +251,20 @@ ContactsCsv read_contacts_table(const std::filesystem::path& path) {
       },
       [&](const auto& v, std::size_t line) {
         out.rows.push_back({std::get<0>(v), std::get<1>(v), std::get<2>(v), std::get<3>(v)});
-        if (vectors) out.lines.push_back(line);
+        if (vectors) {
+          out.lines.push_back(line);
+          out.fz.push_back(std::get<4>(v));
+        }
       });
-  out.forces = form == 0 ? ContactForces::magnitudes : ContactForces::vectors;
+  out.forces = shape.form == 0 ? ContactForces::magnitudes : ContactForces::vectors;
+  if (!shape.present[4]) out.fz.clear();
   return out;
 }
 
 std::vector<Contact> read_contacts_csv(const std::filesystem::path& path) {
   ContactsCsv table = read_contacts_table(path);
   if (table.forces == ContactForces::vectors)
-    throw CsvError(path.string() + ": contact forces given as vectors (fx,fy) need the particles' positions");
+    throw CsvError(path.string() + ": contact forces given as vectors (fx,fy[,fz]) need the particles' positions");
   return std::move(table.rows);
 }
 
@@ -260,7 +282,8 @@ std::vector<Contact> contacts_from_vectors(const std::filesystem::path& path, co
                        " is not in the particles CSV (" + std::to_string(particles.size()) + " particles)");
     const Particle& a = particles[static_cast<std::size_t>(row.i)];
     const Particle& b = particles[static_cast<std::size_t>(row.j)];
-    const ContactForceParts parts = split_contact_force({a.x - b.x, a.y - b.y, 0.0}, {row.fn, row.ft, 0.0});
+    const ContactForceParts parts =
+        split_contact_force({a.x - b.x, a.y - b.y, a.z - b.z}, {row.fn, row.ft, table.fz.empty() ? 0.0 : table.fz[k]});
     out.push_back({row.i, row.j, parts.fn, parts.ft});
   }
   return out;
@@ -268,16 +291,17 @@ std::vector<Contact> contacts_from_vectors(const std::filesystem::path& path, co
 
 }  // namespace
 
-std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
+ParticlesCsv read_particles_table(const std::filesystem::path& path) {
   // Rows land in the table in file order; their ids are kept only once one is out of order (the
   // table then moves each row to its id). In order, as fnet writes them, ids 0..n-1 need no check.
   std::vector<Particle> table;
   std::vector<std::int64_t> ids;
   std::vector<std::size_t> lines;
   bool in_order = true;
-  static const std::vector<ColumnNames<4>> forms{{"id", "x", "y", "r"}};
-  read_table<std::int64_t, double, double, double>(
-      path, forms,
+  // z, optional: a table with a z column is a 3D frame's.
+  static const std::vector<ColumnNames<5>> forms{{"id", "x", "y", "r", "z"}};
+  const TableShape<5> shape = read_table<std::int64_t, double, double, double, double>(
+      path, forms, 4,
       [&](std::size_t n, std::size_t) {
         table.reserve(n);
         lines.reserve(n);
@@ -290,10 +314,11 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
           std::iota(ids.begin(), ids.end(), std::int64_t{0});
         }
         if (!in_order) ids.push_back(id);
-        table.push_back({std::get<1>(v), std::get<2>(v), std::get<3>(v)});
+        table.push_back({std::get<1>(v), std::get<2>(v), std::get<3>(v), std::get<4>(v)});
         lines.push_back(line);
       });
-  if (in_order) return table;
+  const int dimension = shape.present[4] ? 3 : 2;
+  if (in_order) return {dimension, std::move(table)};
   std::vector<Particle> out(table.size());
   std::vector<std::size_t> seen_at(table.size(), 0);  // line of the row that gave each id
   for (std::size_t k = 0; k < table.size(); ++k) {
@@ -309,7 +334,11 @@ std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
     seen_at[id] = lines[k];
     out[id] = table[k];
   }
-  return out;
+  return {dimension, std::move(out)};
+}
+
+std::vector<Particle> read_particles_csv(const std::filesystem::path& path) {
+  return read_particles_table(path).particles;
 }
 
 Frame read_frame_csv(const std::filesystem::path& contacts, const std::optional<std::filesystem::path>& particles) {
@@ -317,12 +346,14 @@ Frame read_frame_csv(const std::filesystem::path& contacts, const std::optional<
   frame.label = contacts.string();
   ContactsCsv table = read_contacts_table(contacts);
   if (particles) {
-    frame.particles = read_particles_csv(*particles);
+    ParticlesCsv read = read_particles_table(*particles);
+    frame.dimension = read.dimension;
+    frame.particles = std::move(read.particles);
     frame.particle_count = frame.particles.size();
   } else if (table.forces == ContactForces::vectors) {
     throw CsvError(contacts.string() +
-                   ": contact forces given as vectors (fx,fy) need the particles CSV, whose positions give the line "
-                   "of centres");
+                   ": contact forces given as vectors (fx,fy[,fz]) need the particles CSV, whose positions give the "
+                   "line of centres");
   }
   frame.contacts = table.forces == ContactForces::vectors ? contacts_from_vectors(contacts, table, frame.particles)
                                                           : std::move(table.rows);

@@ -244,8 +244,7 @@ void StoreWriter::append(const AnalyzedFrame& f, StoreTime at) {
   std::array<std::uint64_t, kNetworkOffsets> network_offsets{};
   network_offsets[0] = network_offsets[1] = h5::row_count(file_.get(), "particles", "store");
   network_offsets[2] = network_offsets[3] = h5::row_count(file_.get(), "contact_pairs", "store");
-  // The frame's dimension is known from its network; a frame committed without one is taken as 2D.
-  const std::uint8_t dimension = f.network ? static_cast<std::uint8_t>(f.network->dimension) : 2;
+  const auto dimension = static_cast<std::uint8_t>(f.dimension);
   if (f.network) {
     const Frame& net = *f.network;
     const ParticleColumns particles = particle_columns(net);
@@ -372,6 +371,9 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto rho = h5::read_doubles(g, "rho", 0, file);
   const auto z = h5::read_doubles(g, "z", 0, file);
   const auto previous = h5::read_int64s(g, "previous", 0, file);
+  // Read as uint32 like has_network; a store from before 3D frames holds 2D frames only.
+  const auto dimension =
+      v1 || v2 ? std::vector<std::uint32_t>(frame.size(), 2) : h5::read_uint32s(g, "dimension", 0, file);
   const auto column_of = series_columns(root.get(), file);
   const auto distances = h5::read_doubles(g, "distances", kSeries, file);
   const auto counts = h5::read_uint64s(g, "counts", kCounts, file);
@@ -393,6 +395,7 @@ StoredRun read_store(const std::filesystem::path& path) {
   for (const std::size_t len : {step.size(), time.size(), rho.size(), z.size(), previous.size(),
                                 distances.size() / kSeries, counts.size() / kCounts, offsets.size() / kPointOffsets})
     n = std::min(n, len);
+  n = std::min(n, dimension.size());
   if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint64_t* off = &offsets[k * kPointOffsets];
@@ -404,6 +407,7 @@ StoredRun read_store(const std::filesystem::path& path) {
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
+    a.dimension = static_cast<int>(dimension[k]);
     for (std::size_t c = 0; c < kSeries; ++c) a.distances.value[c] = distances[k * kSeries + column_of[c]];
     std::array<Diagram*, 4> diagrams{&a.diagrams.normal.pd0, &a.diagrams.normal.pd1, &a.diagrams.tangential.pd0,
                                      &a.diagrams.tangential.pd1};

@@ -49,6 +49,7 @@ json summary_json(const RunSummary& s) {
               {"last_frame", nullptr},
               {"rho", nullptr},
               {"z", nullptr},
+              {"dimension", nullptr},
               {"rho_j", s.rho_j ? json(*s.rho_j) : json(nullptr)},
               {"seconds_since_last_frame", s.seconds_since_last_frame},
               {"last_activity", s.last_activity ? json(*s.last_activity) : json(nullptr)},
@@ -58,6 +59,7 @@ json summary_json(const RunSummary& s) {
     out["last_frame"] = *s.last_frame;
     out["rho"] = s.last_rho;
     out["z"] = s.last_z;
+    out["dimension"] = s.dimension;
   }
   if (s.has_info) out["planned_frames"] = s.info.frames;
   return out;

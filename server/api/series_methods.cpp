@@ -24,6 +24,8 @@ json series_get(const Registry& registry, const json& params) {
   json out = describe(r.measure.query);
   if (r.measure.denominator) out["ratio"] = r.measure.ratio;
   out["run"] = r.run;
+  // The run's dimension, as its last committed frame has it: 3 makes rho a volume fraction.
+  out["dimension"] = a.frames.empty() ? json(nullptr) : json(a.frames.back()->dimension);
   SeriesColumns columns;
   for (std::size_t k = 0; k < a.values.value.size(); ++k) {
     const std::optional<double>& v = a.values.value[k];

@@ -47,7 +47,8 @@ int explain_command(const std::vector<std::string>& args) {
       "  {\"value\", \"lower\", \"upper\", \"exact\", \"metric\", \"q\"?, \"dim\", \"force\", \"essential\", \"k\",\n"
       "   \"explain\": [{\"rank\", \"cost\", \"a\": point|null, \"b\": point|null}], \"seconds\"}\n"
       "  point = {\"birth\", \"death\", \"birth_simplex\": simplex, \"death_simplex\": simplex|null},\n"
-      "  simplex = {\"grains\": [ids], \"positions\": [[x, y], ...]} (positions only with particle tables).\n"
+      "  simplex = {\"grains\": [ids], \"positions\": [[x, y], ...]} (positions only with particle tables;\n"
+      "  [x, y, z] each for a 3D frame).\n"
       "\n"
       "options");
   std::string metric, essential = "floor", force = "normal", format = "table", particles_a, particles_b;

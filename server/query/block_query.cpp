@@ -3,6 +3,7 @@
 #include <chrono>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "server/query/query_errors.hpp"
 
@@ -14,6 +15,11 @@ BlockAnswer block_query(const FrameLookup& frames, const BlockRequest& r) {
   if (!frames.frame(r.run, r.other_frame)) throw UnknownFrame(r.run, r.other_frame);
   const auto start = std::chrono::steady_clock::now();
   const Frame a = frames.network(r.run, r.frame), b = frames.network(r.run, r.other_frame);
+  if (a.dimension != b.dimension)
+    throw NoNetwork(r.run, r.other_frame,
+                    "frame " + std::to_string(r.other_frame) + " is " + std::to_string(b.dimension) + "D and frame " +
+                        std::to_string(r.frame) + " " + std::to_string(a.dimension) +
+                        "D: blocks compare the same grid over two frames of one dimension");
   const auto split = [&](const Frame& f, std::uint32_t index) {
     try {
       return split_into_blocks(f, r.k);

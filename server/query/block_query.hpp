@@ -1,5 +1,5 @@
-// Where a run's force network changed between two frames, cell by cell over a k x k grid
-// (common/analysis/blocks.hpp; blocks.get).
+// Where a run's force network changed between two frames, cell by cell over a k x k grid, or
+// k x k x k for 3D frames (common/analysis/blocks.hpp; blocks.get).
 #pragma once
 
 #include <cstdint>
@@ -20,14 +20,15 @@ struct BlockRequest {
 };
 
 struct BlockAnswer {
-  std::vector<BlockCell> cells, other_cells;  // the same grid over each frame, row-major
+  std::vector<BlockCell> cells, other_cells;  // the same grid over each frame, in cell order (blocks.hpp)
   std::vector<BlockDistance> distances;       // cell by cell, in cell order
   std::size_t largest = 0;                    // the first cell of the largest distance (+inf the largest)
   double seconds = 0;                         // reading the networks and computing the distances
 };
 
 // UnknownFrame (the first frame checked first) when a frame is not committed; NoNetwork when a
-// frame's network cannot be had, or has no grain positions to place it on the grid.
+// frame's network cannot be had, has no grain positions to place it on the grid, or is not of the
+// other frame's dimension.
 BlockAnswer block_query(const FrameLookup& frames, const BlockRequest& request);
 
 }  // namespace fnet::query

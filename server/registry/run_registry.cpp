@@ -320,6 +320,7 @@ RunSummary Registry::summary_locked(const std::string& id, const Run& run) const
     s.last_frame = run.committed.rbegin()->first;
     s.last_rho = run.committed.rbegin()->second->header.rho;
     s.last_z = run.committed.rbegin()->second->header.z;
+    s.dimension = run.committed.rbegin()->second->dimension;
     std::vector<double> rho, z;
     rho.reserve(run.committed.size());
     z.reserve(run.committed.size());

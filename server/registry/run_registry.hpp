@@ -42,6 +42,7 @@ struct RunSummary {
   std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
   std::optional<std::uint32_t> first_frame, last_frame;
   double last_rho = 0, last_z = 0;
+  int dimension = 2;            // the last committed frame's
   std::optional<double> rho_j;  // where Z first reached 3 among the analyzed frames, interpolated
   // Seconds since the Unix epoch of the last frame received or announcement, kept in the store
   // so that it survives a restart; none for a run known only from a store without times.

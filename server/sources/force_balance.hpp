@@ -1,6 +1,7 @@
 // Newton's first law per grain, as a check that a dump's force columns were read as meant: in a
 // relaxed packing every grain's contact forces (grains and walls) add up to nearly nothing, while
-// a column read as the wrong quantity leaves most grains far out of balance.
+// a column read as the wrong quantity leaves most grains far out of balance. In 3D as in 2D: the
+// force vectors are the frame's own (z 0 in 2D).
 #pragma once
 
 #include <cstdint>

@@ -43,12 +43,12 @@ SourceKind frame_files_kind() {
   return {"frame's CSV files",
           {{"contacts", "C.csv",
             "contacts CSV with header i,j,fn,ft: 0-based particle indices, signed normal force, tangential force "
-            "(magnitudes are used); or i,j,fx,fy: the force on grain i as a vector, split along the line of centres "
-            "(needs --particles; proto/frames.md)",
+            "(magnitudes are used); or i,j,fx,fy[,fz]: the force on grain i as a vector, split along the line of "
+            "centres (needs --particles; proto/frames.md)",
             SourceFlag::Path::file},
            {"particles", "P.csv",
-            "particles CSV with header id,x,y,r; fixes the particle count so rattlers count (default: largest "
-            "contact index + 1)",
+            "particles CSV with header id,x,y,r (id,x,y,r,z: a 3D frame); fixes the particle count so rattlers count "
+            "(default: largest contact index + 1)",
             SourceFlag::Path::file, false}},
           false,
           open_frame_files_kind};

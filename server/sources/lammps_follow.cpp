@@ -107,7 +107,7 @@ class LammpsFollow final : public FrameSource {
         progress_(Clock::now()) {
     first_ = take();
     if (first_) info_.particles = static_cast<std::uint32_t>(grains_->ids.size());
-    info_.config_json = lammps_config(options_, region_);
+    info_.config_json = lammps_config(options_, dimension_, region_);
   }
   const RunInfo& announcement() const override { return info_; }
   std::optional<RunFrame> next() override {
@@ -157,8 +157,11 @@ class LammpsFollow final : public FrameSource {
   }
 
   RunFrame frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs) {
-    if (!grains_) grains_ = grain_ids(atoms, options_.wall_types);
-    LammpsFrame f = checked_frame(atoms, pairs, *grains_, options_, index_++);
+    if (!grains_) {
+      grains_ = grain_ids(atoms, options_.wall_types);
+      dimension_ = run_dimension(options_, atoms);
+    }
+    LammpsFrame f = checked_frame(atoms, pairs, *grains_, dimension_, options_, index_++);
     region_ = f.region;
     return std::move(f.run);
   }
@@ -170,6 +173,7 @@ class LammpsFollow final : public FrameSource {
   Clock::time_point progress_;  // when a snapshot was last completed
   bool ended_ = false, done_ = false;
   std::optional<GrainIds> grains_;
+  RunDimension dimension_;
   std::uint32_t index_ = 0;
   DensityRegion region_ = DensityRegion::box;
   RunInfo info_;

@@ -30,11 +30,12 @@ class LammpsOneFrame final : public FrameSource {
     if (pairs.empty()) throw std::runtime_error(options.pairs + ": no snapshot");
     const auto a = at(atoms, options.atoms);
     const auto p = at(pairs, options.pairs);
-    LammpsFrame frame = checked_frame(*a, *p, grain_ids(atoms.front(), options.wall_types), options,
+    const RunDimension dimension = run_dimension(options, atoms.front());
+    LammpsFrame frame = checked_frame(*a, *p, grain_ids(atoms.front(), options.wall_types), dimension, options,
                                       static_cast<std::uint32_t>(a - atoms.begin()));
     info_.frames = 1;
     info_.particles = static_cast<std::uint32_t>(frame.run.frame.particle_count);
-    info_.config_json = lammps_config(options, frame.region);
+    info_.config_json = lammps_config(options, dimension, frame.region);
     frame_ = std::move(frame.run);
   }
   const RunInfo& announcement() const override { return info_; }

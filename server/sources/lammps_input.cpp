@@ -99,6 +99,10 @@ LammpsOptions lammps_options(const SourceArguments& given) {
       throw boost::program_options::error("--rho: \"" + out.rho + "\" is not log:PATH:COLUMN or column:NAME");
     out.rho_by_step = thermo_column(out.rho.substr(4, colon - 4), out.rho.substr(colon + 1));
   }
+  if (const std::string d = flag_value(given, "dimension"); !d.empty())
+    out.dimension = usage("--dimension", [&] { return dimension_flag(d); });
+  else if (const std::string log = flag_value(given, "lammps-log"); !log.empty() && !given.count("follow"))
+    out.dimension = logged_dimension(log);
   return out;
 }
 
@@ -124,9 +128,13 @@ void require_paired(const std::vector<DumpSnapshot>& atoms, const std::vector<Du
                              " has no snapshot in the per-atom dumps " + options.atoms);
 }
 
+RunDimension run_dimension(const LammpsOptions& options, const DumpSnapshot& first_atoms) {
+  return options.dimension ? *options.dimension : dimension_of_first_frame(first_atoms);
+}
+
 LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, const GrainIds& grains,
-                          const LammpsOptions& options, std::uint32_t index) {
-  LammpsFrame frame = lammps_frame(atoms, pairs, grains, options.columns, options.wall_types, index);
+                          const RunDimension& dimension, const LammpsOptions& options, std::uint32_t index) {
+  LammpsFrame frame = lammps_frame(atoms, pairs, grains, options.columns, options.wall_types, dimension, index);
   if (options.balance_tolerance > 0) check_balance(frame, grains, options.balance_tolerance);
   if (!options.rho_column.empty()) {
     frame.run.header.rho = rho_of_column(atoms, options.rho_column);
@@ -141,12 +149,13 @@ LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, 
   return frame;
 }
 
-std::string lammps_config(const LammpsOptions& options, DensityRegion region) {
+std::string lammps_config(const LammpsOptions& options, const RunDimension& dimension, DensityRegion region) {
   return nlohmann::json{{"source",
                          {{"kind", "lammps"},
                           {"atoms", options.atoms},
                           {"pairs", options.pairs},
                           {"wall_types", options.wall_types},
+                          {"dimension", dimension.value},
                           {"rho", options.rho.empty() ? std::string(density_region_name(region)) : options.rho}}}}
       .dump();
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "server/sources/lammps_dimension.hpp"
 #include "server/sources/lammps_frame.hpp"
 #include "server/sources/source_kind.hpp"
 
@@ -25,14 +26,19 @@ struct LammpsOptions {
   std::string rho;
   std::map<std::uint64_t, double> rho_by_step;
   std::string rho_column;
+  // --dimension, or the dimension the log (--lammps-log) names; none: the first frame decides
+  // (lammps_dimension.hpp).
+  std::optional<RunDimension> dimension;
 };
 
 // The flags of every kind that reads LAMMPS dumps: --lammps-atoms and --lammps-pairs, whose values
-// are called `value_name` in the usage line, --wall-types, --columns, --check-balance.
+// are called `value_name` in the usage line, --wall-types, --columns, --check-balance, --rho,
+// --dimension, --lammps-log.
 std::vector<SourceFlag> lammps_flags(const std::string& value_name);
 
-// The flags --lammps-atoms, --lammps-pairs, --wall-types, --columns, --check-balance and --rho as
-// given (the log --rho names is read here); usage errors (boost::program_options::error) name the
+// The flags --lammps-atoms, --lammps-pairs, --wall-types, --columns, --check-balance, --rho and
+// --dimension as given (the log --rho names is read here, and so is --lammps-log's for the
+// dimension unless the run is followed); usage errors (boost::program_options::error) name the
 // flag.
 LammpsOptions lammps_options(const SourceArguments& given);
 
@@ -47,12 +53,16 @@ std::vector<DumpSnapshot> snapshots(const std::string& pattern, DumpKind kind);
 void require_paired(const std::vector<DumpSnapshot>& atoms, const std::vector<DumpSnapshot>& pairs,
                     const LammpsOptions& options);
 
+// The run's dimension: the options' when they know it, else the first per-atom snapshot's
+// (lammps_dimension.hpp).
+RunDimension run_dimension(const LammpsOptions& options, const DumpSnapshot& first_atoms);
+
 // Frame `index` of a run, with the force-balance check the options ask for, and ρ from the log
 // where they name one (a TIMESTEP without its thermo row throws).
 LammpsFrame checked_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, const GrainIds& grains,
-                          const LammpsOptions& options, std::uint32_t index);
+                          const RunDimension& dimension, const LammpsOptions& options, std::uint32_t index);
 
-// The announcement's config_json: the dumps and how ρ's region was obtained.
-std::string lammps_config(const LammpsOptions& options, DensityRegion region);
+// The announcement's config_json: the dumps, the dimension and how ρ's region was obtained.
+std::string lammps_config(const LammpsOptions& options, const RunDimension& dimension, DensityRegion region);
 
 }  // namespace fnet::sources

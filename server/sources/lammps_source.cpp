@@ -22,17 +22,20 @@ class LammpsRun final : public FrameSource {
     const std::vector<DumpSnapshot> pairs = snapshots(options.pairs, DumpKind::entries);
     require_paired(atoms, pairs, options);
     DensityRegion region = DensityRegion::box;
+    RunDimension dimension;
     if (!atoms.empty()) {
       const GrainIds grains = grain_ids(atoms.front(), options.wall_types);
+      dimension = run_dimension(options, atoms.front());
       for (std::size_t k = 0; k < atoms.size(); ++k) {
-        LammpsFrame frame = checked_frame(atoms[k], pairs[k], grains, options, static_cast<std::uint32_t>(k));
+        LammpsFrame frame =
+            checked_frame(atoms[k], pairs[k], grains, dimension, options, static_cast<std::uint32_t>(k));
         region = frame.region;
         frames_.push_back(std::move(frame.run));
       }
       info_.particles = static_cast<std::uint32_t>(grains.ids.size());
     }
     info_.frames = static_cast<std::uint32_t>(frames_.size());
-    info_.config_json = lammps_config(options, region);
+    info_.config_json = lammps_config(options, dimension, region);
   }
   const RunInfo& announcement() const override { return info_; }
   std::optional<RunFrame> next() override {
@@ -54,8 +57,7 @@ std::unique_ptr<FrameSource> open_lammps(const SourceArguments& given) {
           "--rho log: does not go with --follow (LAMMPS writes its log behind the dumps)");
     return follow_lammps(options, follow_options(given));
   }
-  for (const char* flag : {"idle-timeout", "lammps-log"})
-    if (given.count(flag)) throw boost::program_options::error(std::string("--") + flag + " needs --follow");
+  if (given.count("idle-timeout")) throw boost::program_options::error("--idle-timeout needs --follow");
   return std::make_unique<LammpsRun>(options);
 }
 
@@ -79,7 +81,16 @@ std::vector<SourceFlag> lammps_flags(const std::string& value_name) {
            SourceFlag::Path::none, false},
           {"rho", "log:LOG:COLUMN|column:NAME",
            "rho of each frame from the LAMMPS log's thermo output (thermo_style custom step COLUMN) at its "
-           "TIMESTEP, or from a per-atom dump column holding one value, in place of the grains' area over the region",
+           "TIMESTEP, or from a per-atom dump column holding one value, in place of the grains' area (volume in 3D) "
+           "over the region",
+           SourceFlag::Path::none, false},
+          {"dimension", "2|3",
+           "the run's dimension (default: the dimension command of --lammps-log's log, else 3 when the first "
+           "frame's z column varies, 2 otherwise)",
+           SourceFlag::Path::none, false},
+          {"lammps-log", "LOG",
+           "LAMMPS's log (-log LOG): the run's dimension from its dimension command (not with --follow); with "
+           "--follow, the input has ended once it says \"Total wall time\"",
            SourceFlag::Path::none, false}};
 }
 
@@ -91,9 +102,6 @@ SourceKind lammps_kind() {
                    SourceFlag::Path::none, false});
   flags.push_back({"idle-timeout", "SECONDS",
                    "with --follow: the input has ended once no snapshot was completed for this long (default 300)",
-                   SourceFlag::Path::none, false});
-  flags.push_back({"lammps-log", "LOG",
-                   "with --follow: LAMMPS's log (-log LOG); the input has ended once it says \"Total wall time\"",
                    SourceFlag::Path::none, false});
   return {"LAMMPS run", std::move(flags), false, open_lammps};
 }

@@ -1,6 +1,6 @@
 """Who may use fnet-server beyond loopback, on addresses inside two network namespaces the test
 creates (a server host and a client host joined by a veth pair, as tests/e2e/multihost_test.sh
-makes its hosts; DDS domain 87). fnet-server refuses to listen on a non-loopback address without
+makes its hosts; DDS domain 88). fnet-server refuses to listen on a non-loopback address without
 --token-file; with one, a connection that does not present the token gets error -32007 and is
 closed before any method runs — on the TCP API (raw, fnetctl, the Python client) and on the
 dashboard (401 for the page and the WebSocket) — while fnetctl --token-file, FNET_TOKEN,
@@ -20,7 +20,7 @@ import urllib.error
 import urllib.request
 
 SERVER_IP, CLIENT_IP = "10.233.0.1", "10.233.0.2"
-API_PORT, HTTP_PORT, DOMAIN = 7707, 7708, 87
+API_PORT, HTTP_PORT, DOMAIN = 7707, 7708, 88
 TOKEN = "e2e-dashboard-token-0123456789abcdef"
 
 

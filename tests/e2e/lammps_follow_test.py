@@ -2,13 +2,15 @@
 """proto/lammps.md's live follow, run as written: a real LAMMPS compression followed by
 `fnet-analyze publish --follow` into a real fnet-server on loopback DDS.
 
-Writes a small 2D compression (196 polydisperse disks, a periodic box squeezed by fix deform, then
-relaxed) with the page's dump lines every 500 steps, starts fnet-server, runs the page's follow
+Writes a small 2D compression (tests/support/lammps_inputs.py: 196 polydisperse disks, a periodic
+box squeezed by fix deform, then relaxed), or with --dimension 3 a 3D one (343 spheres), with the
+page's dump lines (its 3D lines in 3D) every 500 steps, starts fnet-server, runs the page's follow
 block for the case (`serial`: lmp, one file per snapshot; `mpi`: mpirun -np 2 lmp, one file of
 every snapshot), and checks that frames reached the server while LAMMPS ran, that every frame
 arrived, and that every one of the twelve served series equals, value for value, the offline
-`fnet-analyze store` of the same dumps. Every process it starts is stopped. Exit 0 when every
-check holds, 1 otherwise.
+`fnet-analyze store` of the same dumps, and so does every network the server kept (particles,
+their z in 3D, the run's dimension, contacts and forces). Every process it starts is stopped. Exit
+0 when every check holds, 1 otherwise.
 """
 import argparse
 import math
@@ -20,32 +22,18 @@ import subprocess
 import sys
 import time
 
-INPUT = """dimension 2
-boundary p p p
-atom_style sphere
-comm_modify vel yes
-lattice sq 0.694
-region box block 0 16.8 0 16.8 -0.5 0.5 units box
-create_box 1 box
-create_atoms 1 box
-velocity all create 0.5 4711 loop geom
-variable d atom 0.8+0.4*random(0,1,4711)
-set group all diameter v_d
-set group all density 1.0
-pair_style granular
-pair_coeff * * hooke 2000.0 50.0 tangential linear_history 1000.0 1.0 0.5
-neighbor 0.3 bin
-timestep 0.001
-fix move all nve/sphere
-fix flat all enforce2d
-fix calm all viscous 2.0
-{doc}
-fix squeeze all deform 1 x final 0 13.4 y final 0 13.4 remap x units box
-run 10000 post no
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import lammps_inputs  # noqa: E402
+from lammps_doc import blocks  # noqa: E402
+
+# After the disks: the page's lines, then squeezed and relaxed.
+PROTOCOL = "{doc}\n" + lammps_inputs.DISKS_SQUEEZE + """run 10000 post no
 unfix squeeze
 run 3000 post no
 """
-FRAMES = 27  # steps 0, 500, ..., 13000
+FRAMES = {2: 27, 3: 25}  # steps 0, 500, ..., 13000 (2D) or 12000 (3D)
 METRICS = ("bottleneck", "wasserstein1", "wasserstein2")
 
 failures = []
@@ -55,10 +43,6 @@ def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what, flush=True)
     if not ok:
         failures.append(what)
-
-
-def blocks(doc, lang):
-    return re.findall(r"```" + lang + r"\n(.*?)```", doc, re.S)
 
 
 def follow_block(doc, case):
@@ -73,6 +57,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("case", choices=("serial", "mpi", "input"),
                     help="input: only write the mpi case's in.fnet into the workdir (for another test)")
+    ap.add_argument("--dimension", type=int, choices=(2, 3), default=2,
+                    help="3: the spheres of tests/support/lammps_inputs.py with the page's 3D lines")
     ap.add_argument("--source-dir", required=True)
     ap.add_argument("--build-dir", required=True)
     ap.add_argument("--workdir", required=True)
@@ -84,13 +70,16 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     doc = open(os.path.join(a.source_dir, "proto", "lammps.md")).read()
-    lines = blocks(doc, "lammps")[0].replace(" 1000 ", " 500 ")
+    lines = blocks(doc, "lammps" if a.dimension == 2 else "lammps 3d")[0].replace(" 1000 ", " 500 ")
     block = follow_block(doc, "serial" if a.case == "serial" else "mpi")
     if a.case != "serial":  # the page's mpi block reads one file of every snapshot
         lines = lines.replace("atoms.*.txt", "atoms.txt").replace("pairs.*.txt", "pairs.txt")
         if os.geteuid() == 0:
             block = block.replace("mpirun ", "mpirun --allow-run-as-root --oversubscribe ", 1)
-    open(os.path.join(work, "in.fnet"), "w").write(INPUT.format(doc=lines))
+    text = lammps_inputs.disks() + PROTOCOL.format(doc=lines.rstrip("\n")) if a.dimension == 2 else \
+        lammps_inputs.spheres(lines)
+    open(os.path.join(work, "in.fnet"), "w").write(text)
+    frames, a_dimension = FRAMES[a.dimension], a.dimension
     if a.case == "input":
         return 0
     sys.path.insert(0, os.path.join(a.source_dir, "client", "python"))
@@ -130,15 +119,15 @@ def main():
                 time.sleep(0.05)
             check(follow.poll() == 0, f"the follow block ran: exit {follow.poll()} "
                   f"({open(os.path.join(work, 'follow.log')).read()[-600:]})")
-            check(0 < seen_live < FRAMES, f"{seen_live} frames analyzed before LAMMPS finished")
+            check(0 < seen_live < frames, f"{seen_live} frames analyzed before LAMMPS finished")
             deadline = time.monotonic() + 20
             summary = None
             while time.monotonic() < deadline:
                 summary = next((r for r in c.runs() if r["run"] == run_id), None)
-                if summary and summary["frames"] + summary["rejected"] >= FRAMES and summary["pending"] == 0:
+                if summary and summary["frames"] + summary["rejected"] >= frames and summary["pending"] == 0:
                     break
                 time.sleep(0.1)
-            check(summary is not None and summary["frames"] == FRAMES and summary["rejected"] == 0,
+            check(summary is not None and summary["frames"] == frames and summary["rejected"] == 0,
                   f"every frame analyzed: {summary}")
 
             # The offline analysis of the same dumps, after the run.
@@ -158,7 +147,18 @@ def main():
                             check(served["rho"] == [float(v) for v in offline.rho], f"{what}: the same rho")
                             same = all((v is None and math.isnan(w)) or v == w
                                        for v, w in zip(served["value"], [float(x) for x in offline.value]))
-                            check(same and len(served["value"]) == FRAMES, f"{what}: the same values, bit for bit")
+                            check(same and len(served["value"]) == frames, f"{what}: the same values, bit for bit")
+                # The networks the server kept, as they came over DDS: the offline ones, with the
+                # run's dimension and its grains' z.
+                with fnet.store.open_store(os.path.join(work, "data", run_id + ".h5")) as live:
+                    kept = [(live.network(k), store.network(k)) for k in range(frames)]
+                same = all(a is not None and b is not None and a.dimension == b.dimension == a_dimension
+                           and np.array_equal(a.particles, b.particles) and np.array_equal(a.particle_z, b.particle_z)
+                           and np.array_equal(a.contact_pairs, b.contact_pairs)
+                           and np.array_equal(a.contact_forces, b.contact_forces) for a, b in kept)
+                lifted = sum(1 for a, _ in kept if a is not None and np.any(a.particle_z != 0))
+                check(same and lifted == (frames if a_dimension == 3 else 0),
+                      f"the served networks are the offline ones, {a_dimension}D, {lifted} frames with z")
     finally:
         for p in reversed(started):
             if p.poll() is None:

@@ -138,6 +138,9 @@ def build_parser():
     p.add_argument("--frame", type=FRAME, required=True, help="the frame")
     p.add_argument("--other-frame", type=FRAME, help="draw the change from --frame to this frame")
     p.add_argument("--force", choices=("normal", "tangential"), default="normal", help="force network")
+    p.add_argument("--slab", type=_positive_float,
+                   help=f"3D frames: the contacts within this many d of the middle z (default {figures.SLAB_HALF_WIDTH:g})")
+    p.add_argument("--projection", action="store_true", help="3D frames: every contact projected on xy, not a slab")
     _out(p)
 
     p = kinds.add_parser("diagram", help="Fig. 3: a frame's persistence diagrams PD0 and PD1")
@@ -282,6 +285,12 @@ def _draw_network(args, record):
         return frames, figures.run_walls(f)
 
     frames, walls = _read_file(path, args.run_file, read)
+    if figures.dimension_of(frames[0]) == 3:
+        slab = figures.SLAB_HALF_WIDTH if args.slab is None else args.slab
+        if len(frames) == 1:
+            return figures.network(frames[0], force=args.force, slab=slab, projection=args.projection)
+    elif args.slab is not None or args.projection:
+        raise ValueError(f"--slab and --projection draw 3D frames; frame {args.frame} of {path} is 2D")
     if len(frames) == 1:
         return figures.network(frames[0], force=args.force, walls=walls)
     return figures.network_change(*frames, force=args.force, walls=walls)

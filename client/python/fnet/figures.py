@@ -8,6 +8,12 @@ be checked against what was served: "contacts", "created", "broken", "grains", "
 
 Lengths are in d, the mean grain diameter (fnet-simd's unit of length, and that of the LAMMPS
 runs fnet reads); forces in units of the mean force of the network they belong to.
+
+A 3D frame (`frame.dimension` 3, each grain's z in `frame.particle_z`) is drawn as a slab seen from +z: the
+contacts whose contact point lies within `slab` d of the middle z, projected on xy, and each
+sphere's part inside the slab as a disc ("slab" gid: the slab's bounds); or, with
+`projection=True`, every contact projected on xy. Against rho, a 3D run's axis says that rho is
+its volume fraction (a 2D run's is the area fraction).
 """
 
 import json
@@ -31,6 +37,8 @@ from fnet.rpc import DEFAULT_DIM
 
 METRIC_SYMBOLS = {"bottleneck": "d_B", "wasserstein1": "d_{W1}", "wasserstein2": "d_{W2}"}
 AXIS_LABELS = {"rho": r"$\rho$", "rho_minus_rho_j": r"$\rho - \rho_J$"}
+VOLUME_FRACTION = " (volume fraction)"  # added to a rho axis of a 3D run
+SLAB_HALF_WIDTH = 1.0  # d: a 3D frame's default slab is two diameters thick
 FORCE_UNIT = r"$f / \langle f \rangle$"  # a force over the mean force of its network
 COLOUR_PERCENTILE = 99.0  # the top of a force colour scale: a few strong contacts do not wash out the rest
 # A diverging scale whose middle, no change, is a grey that shows on white.
@@ -163,18 +171,98 @@ def _packing_axes(ax, frame, walls):
     return note
 
 
+def dimension_of(frame_or_series, dimension=None):
+    """2 or 3: `dimension` when given, else the `dimension` the frame or series carries (2 when it
+    carries none)."""
+    d = dimension if dimension is not None else frame_or_series.get("dimension", 2)
+    if d not in (2, 3):
+        raise ValueError(f"dimension: 2 or 3, not {d!r}")
+    return int(d)
+
+
+def _zs(frame):
+    """The grains' z: a 3D frame's particle_z (fnet.store.Frame)."""
+    z = frame.get("particle_z")
+    if z is None or len(z) != len(frame.particles):
+        raise ValueError(f"frame {frame.get('index')}: a 3D frame needs particle_z, the z of each of its "
+                         f"{len(frame.particles)} particles")
+    return np.asarray(z, dtype=np.float64)
+
+
+def contact_points(frame, pairs):
+    """(m, 3): the contact point of each pair (i, j) in 3D: on the line of centres at distance r_i
+    from grain i's centre, as fnet's blocks place a contact (i's centre when the centres coincide)."""
+    p = frame.particles
+    centres = np.column_stack([p[:, 0], p[:, 1], _zs(frame)])
+    a, b = centres[pairs[:, 0]], centres[pairs[:, 1]]
+    length = np.linalg.norm(b - a, axis=1)
+    step = np.divide(p[pairs[:, 0], 2], length, out=np.zeros(len(length)), where=length > 0)
+    return a + (b - a) * step[:, None]
+
+
+def slab_of(frame, half_width=SLAB_HALF_WIDTH, centre=None):
+    """(lo, hi): the slab |z - centre| <= half_width of a 3D frame, centre the middle of its
+    spheres' z extent (min z - r to max z + r) when not given."""
+    if not half_width > 0:
+        raise ValueError(f"slab: a half-width > 0 in d, not {half_width!r}")
+    z, r = _zs(frame), frame.particles[:, 2]
+    if centre is None:
+        centre = 0.5 * (float((z - r).min()) + float((z + r).max())) if len(z) else 0.0
+    return centre - half_width, centre + half_width
+
+
+def in_slab(frame, pairs, slab):
+    """Which pairs have their contact point in the slab (lo, hi), bounds included."""
+    z = contact_points(frame, pairs)[:, 2]
+    return (z >= slab[0]) & (z <= slab[1])
+
+
+def slab_discs(frame, slab):
+    """(indices, radii): the spheres that reach into the slab (lo, hi), and the radius of the disc
+    each one's part inside the slab covers seen from +z: r for a centre inside, sqrt(r² - g²) for a
+    centre at distance g < r outside."""
+    z, r = _zs(frame), frame.particles[:, 2]
+    gap = np.maximum(np.maximum(slab[0] - z, z - slab[1]), 0.0)
+    keep = gap < r
+    return np.flatnonzero(keep), np.sqrt(r[keep] ** 2 - gap[keep] ** 2)
+
+
 def _frame_title(frame):
     # Two lines: a run's name is long, and one line would run under the colour bar or off the figure.
     return f"{frame.get('run', '')}\nframe {frame.index}, " + r"$\rho$" + f" = {frame.rho:.4f}, Z = {frame.z:.3f}"
 
 
-def network(frame, force="normal", cmap="viridis", grains=True, walls=None):
+def _frame_title_3d(frame):
+    rho, z = frame.get("rho"), frame.get("z")
+    numbers = [r"$\rho$" + f" = {rho:.4f} (volume fraction)" if rho is not None else None,
+               f"Z = {z:.3f}" if z is not None else None]
+    return f"{frame.get('run', '')}\nframe {frame.get('index')}, 3D" + "".join(f", {n}" for n in numbers if n)
+
+
+def _contact_lines(ax, segments, values, cmap, top, gid="contacts"):
+    lines = LineCollection(segments, array=values, cmap=cmap, norm=Normalize(0, top),
+                           linewidths=0.4 + 1.6 * np.minimum(values / top, 1.0), gid=gid)
+    ax.add_collection(lines)
+    return lines
+
+
+def network(frame, force="normal", cmap="viridis", grains=True, walls=None, slab=SLAB_HALF_WIDTH, z_centre=None,
+            projection=False):
     """Fig. 1: a frame's force network. Contacts are segments between grain centres coloured by
     force / mean force (the "contacts" LineCollection: get_segments(), get_array()), the colour
     scale topped at the 99th percentile (colour_top; the maximum is in its label); grains are
     circles (the "grains" collection), in `frame`'s positions (a fnet.store.Frame). The "walls"
     are the wall disks when the run's `walls` are given (run_walls, wall_disks), else the grains'
-    bounding box, dashed; the caption says which."""
+    bounding box, dashed; the caption says which.
+
+    A 3D frame (dimension_of(frame) 3) is seen from +z: the contacts whose contact point lies in
+    the slab |z - z_centre| <= `slab` (d; z_centre the middle of the spheres' extent by default),
+    their segments projected on xy and drawn weakest first so that strong chains stay on top, and
+    the "grains" discs of slab_discs; with `projection`, every contact and no grains. Forces are
+    normalized over the whole network either way; the caption states the slab and how many
+    contacts it holds."""
+    if dimension_of(frame) == 3:
+        return _network_3d(frame, force, cmap, grains, walls, slab, z_centre, projection)
     pairs, values = normalized_network(frame, force)
     xy = frame.particles[:, :2]
     fig = _figure(6.4, 6.6)
@@ -183,14 +271,47 @@ def network(frame, force="normal", cmap="viridis", grains=True, walls=None):
         _grains(ax, frame.particles)
     top = colour_top(values)
     biggest = float(values.max()) if len(values) else 0.0
-    lines = LineCollection(_segments(xy, pairs), array=values, cmap=cmap, norm=Normalize(0, top),
-                           linewidths=0.4 + 1.6 * np.minimum(values / top, 1.0), gid="contacts")
-    ax.add_collection(lines)
+    lines = _contact_lines(ax, _segments(xy, pairs), values, cmap, top)
     fig.colorbar(lines, ax=ax, shrink=0.8, extend="max" if biggest > top else "neither",
                  label=f"{force} force, {FORCE_UNIT}\n(scale to the {COLOUR_PERCENTILE:g}th percentile; "
                        f"max {biggest:.3g})")
     fig.supxlabel(_packing_axes(ax, frame, walls), fontsize="small")
     ax.set_title(_frame_title(frame))
+    return fig
+
+
+def _network_3d(frame, force, cmap, grains, walls, slab, z_centre, projection):
+    if walls is not None:
+        raise ValueError("walls: fnet-simd's walls are those of a 2D run; a 3D frame is drawn in its spheres' "
+                         "bounding box")
+    pairs, values = normalized_network(frame, force)
+    top = colour_top(values)
+    if projection:
+        keep = np.ones(len(pairs), dtype=bool)
+        where = f"every contact of the network ({len(pairs)}), projected on xy"
+    else:
+        bounds = slab_of(frame, slab, z_centre)
+        keep = in_slab(frame, pairs, bounds)
+        where = (f"the {int(keep.sum())} of {len(pairs)} contacts whose contact point lies in the slab "
+                 f"{bounds[0]:.2f} ≤ z ≤ {bounds[1]:.2f} ({2 * slab:g} d thick), seen from +z;\n"
+                 "circles: each sphere's part inside the slab")
+    order = np.argsort(values[keep], kind="stable")  # weakest first: strong chains drawn on top
+    shown, shown_values = pairs[keep][order], values[keep][order]
+    fig = _figure(6.4, 6.9)
+    ax = fig.add_subplot()
+    if grains and not projection:
+        indices, radii = slab_discs(frame, bounds)
+        p = frame.particles
+        ax.add_collection(PatchCollection([Circle((p[g, 0], p[g, 1]), rad) for g, rad in zip(indices, radii)],
+                                          facecolor="none", edgecolor="0.6", linewidth=0.3, gid="grains"))
+    biggest = float(values.max()) if len(values) else 0.0
+    lines = _contact_lines(ax, _segments(frame.particles[:, :2], shown), shown_values, cmap, top)
+    fig.colorbar(lines, ax=ax, shrink=0.8, extend="max" if biggest > top else "neither",
+                 label=f"{force} force, {FORCE_UNIT} (over the whole network)\n(scale to the "
+                       f"{COLOUR_PERCENTILE:g}th percentile; max {biggest:.3g})")
+    box = _packing_axes(ax, frame, None)
+    fig.supxlabel(f"{where}\n{box}", fontsize="small")
+    ax.set_title(_frame_title_3d(frame))
     return fig
 
 
@@ -221,7 +342,10 @@ def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True,
     `after` minus that in `before` (the scale topped at the 99th percentile of |change|), the
     contacts created (in `after` only: "created", green, solid) and broken (in `before` only:
     "broken", grey, dashed); each collection's contacts in the order of contact_states. `walls`
-    as in network()."""
+    as in network(). Frames of 2D runs only: a 3D frame raises ValueError (draw each with network())."""
+    if 3 in (dimension_of(before), dimension_of(after)):
+        raise ValueError("network_change draws 2D frames; draw each 3D frame with network(), a slab or the "
+                         "projection")
     pairs, f_before, f_after = contact_states(before, after, force)
     created, broken = np.isnan(f_before), np.isnan(f_after)
     kept = ~created & ~broken
@@ -427,12 +551,21 @@ def _legend(ax, twin):
                         ncol=min(len(labels), 3) or 1, frameon=False)
 
 
-def distances(series, labels=None, z=True, log=False, rho_j=None, title=None):
+def _rho_label(axis, curves, dimension):
+    """The x label against rho: for a 3D run (`dimension`, else the first curve's) it says that rho
+    is the volume fraction."""
+    label = AXIS_LABELS.get(axis, AXIS_LABELS["rho"])
+    three_d = dimension_of(curves[0] if curves else {}, dimension) == 3
+    return label + VOLUME_FRACTION if three_d else label
+
+
+def distances(series, labels=None, z=True, log=False, rho_j=None, title=None, dimension=None):
     """Distances between consecutive frames against rho (each `series` as Client.series or
     Store.series returns it, one or a list): one "distance" line per series through its drawable
     values (finite; > 0 on a log axis, `log`), broken (a NaN row) where a value between was left
     out; values <= 0 on a log axis are marked on its bottom edge ("nonpositive"). Z against rho on
-    a second axis (the "z" line, of the first series); rho_j: vertical lines (see ensemble)."""
+    a second axis (the "z" line, of the first series); rho_j: vertical lines (see ensemble).
+    `dimension` 3 (or a first series that carries it) labels rho as the volume fraction."""
     series = [series] if isinstance(series, dict) else list(series)
     fig = _figure()
     ax = fig.add_subplot()
@@ -446,7 +579,7 @@ def distances(series, labels=None, z=True, log=False, rho_j=None, title=None):
         if log:
             _mark_nonpositive(ax, x, y, f"C{k}")
     _rho_j_marks(ax, rho_j, "rho")
-    ax.set_xlabel(AXIS_LABELS["rho"])
+    ax.set_xlabel(_rho_label("rho", series, dimension))
     ax.set_ylabel("distance to the previous frame")
     twin = _z_line(ax, series[0], "Z") if z and series else None
     _legend(ax, twin)
@@ -455,7 +588,7 @@ def distances(series, labels=None, z=True, log=False, rho_j=None, title=None):
     return fig
 
 
-def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None):
+def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None, dimension=None):
     """Figs. 6, 8, 9: ensemble mean ± standard error per bin of rho (each curve as
     Client.ensemble_series returns it, one or a list). Per curve, the "mean" line holds (rho, mean)
     of its drawable bins (finite mean; > 0 on a log axis, `log`) in order, with a NaN row wherever
@@ -465,7 +598,7 @@ def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None):
     clipped at the axis' bottom (never <= 0). Bins with a mean <= 0 on a log axis are marked on
     its bottom edge ("nonpositive"). The mean Z of the first curve's bins on a second axis ("z",
     in the legend). rho_j: the jamming point(s) as vertical lines ("rho_j") whose legend entries
-    give the value ± standard error (_rho_j_marks)."""
+    give the value ± standard error (_rho_j_marks). `dimension` as in distances."""
     curves = [curves] if isinstance(curves, dict) else list(curves)
     fig = _figure()
     ax = fig.add_subplot()
@@ -492,7 +625,7 @@ def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None):
         low = m - s if bottom is None else np.maximum(m - s, bottom)
         ax.errorbar(x, m, yerr=np.vstack([m - low, s]), fmt="none", capsize=2, color=f"C{k}")
     _rho_j_marks(ax, rho_j, axis)
-    ax.set_xlabel(AXIS_LABELS.get(axis, AXIS_LABELS["rho"]))
+    ax.set_xlabel(_rho_label(axis, curves, dimension))
     ax.set_ylabel("distance to the previous frame: mean ± s.e.")
     twin = _z_line(ax, curves[0], "mean Z") if z and curves else None
     _legend(ax, twin)
@@ -501,10 +634,11 @@ def ensemble(curves, labels=None, z=True, log=False, rho_j=None, title=None):
     return fig
 
 
-def ratio(curves, labels=None, log=False, rho_j=None, title=None):
+def ratio(curves, labels=None, log=False, rho_j=None, title=None, dimension=None):
     """Figs. 7, 10: ratio curves d_B / d_Wq against rho (each as Client.ensemble_series(ratio=...)
     or Client.series(ratio=...) returns it): one "ratio" line per curve through its drawable values
-    (finite; > 0 on a log axis), broken at gaps as ensemble's "mean" lines; rho_j as in ensemble."""
+    (finite; > 0 on a log axis), broken at gaps as ensemble's "mean" lines; rho_j and `dimension`
+    as in ensemble."""
     curves = [curves] if isinstance(curves, dict) else list(curves)
     fig = _figure()
     ax = fig.add_subplot()
@@ -522,7 +656,7 @@ def ratio(curves, labels=None, log=False, rho_j=None, title=None):
         if log:
             _mark_nonpositive(ax, x, y, f"C{k}")
     _rho_j_marks(ax, rho_j, axis)
-    ax.set_xlabel(AXIS_LABELS.get(axis, AXIS_LABELS["rho"]))
+    ax.set_xlabel(_rho_label(axis, curves, dimension))
     ax.set_ylabel("ratio of distances")
     _legend(ax, None)
     if title:
@@ -553,10 +687,18 @@ def blocks(table, network=None, whole=None, walls=None):
     bounds for it: the "cells" rectangles (their get_array() the values, row by row) over the
     network's "contacts", each value written in its cell. Either way the figure states that each
     cell is normalized by its own mean force, with the distance of the whole frame when `whole` is
-    given (a cell's distance can exceed it); `walls` as in network()."""
+    given (a cell's distance can exceed it); `walls` as in network().
+
+    A 3D table (k x k x k, indexed [layer, row, col]) is drawn as k heat maps side by side, one per
+    layer from the lowest z, on one colour scale: each layer's "blocks" image, its cells' texts
+    "block_{layer}_{row}_{col}", the largest framed in its layer."""
+    value = np.asarray(table["value"], dtype=np.float64)
+    if value.ndim == 3:
+        if network is not None:
+            raise ValueError("network: a 3D table (k x k x k) is drawn as its layers, not over a packing")
+        return _blocks_layers(table, value, whole)
     if network is not None:
         return _blocks_over(table, network, whole, walls)
-    value = np.asarray(table["value"], dtype=np.float64)
     k = value.shape[0]
     fig = _figure(5.6, 5.0)
     ax = fig.add_subplot()
@@ -578,6 +720,37 @@ def blocks(table, network=None, whole=None, walls=None):
     ax.set_ylabel("row (y)")
     fig.colorbar(image, ax=ax, label=_metric_label(table) + ", per cell")
     ax.set_title(f"{table.get('run', '')} frames {table.get('frame')} → {table.get('other_frame')}, k = {k}")
+    fig.supxlabel(_normalization_note(table, whole), fontsize="small")
+    return fig
+
+
+def _blocks_layers(table, value, whole):
+    k = value.shape[0]
+    finite = value[np.isfinite(value)]
+    top = float(finite.max()) if len(finite) and finite.max() > 0 else 1.0
+    fig = _figure(2.4 + 2.6 * k, 3.9)
+    axes = fig.subplots(1, k, squeeze=False)[0]
+    largest = table.get("largest")
+    for layer, ax in enumerate(axes):
+        image = ax.imshow(np.where(np.isfinite(value[layer]), value[layer], np.nan), origin="lower", cmap="magma_r",
+                          vmin=0, vmax=top, gid="blocks")
+        for r in range(k):
+            for c in range(k):
+                ax.text(c, r, block_text(float(value[layer, r, c])), ha="center", va="center",
+                        fontsize=9 if k <= 4 else 6, color="black", gid=f"block_{layer}_{r}_{c}",
+                        bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
+        if largest and largest.get("layer") == layer:
+            ax.add_patch(Rectangle((largest["col"] - 0.5, largest["row"] - 0.5), 1, 1, fill=False, edgecolor="C0",
+                                   linewidth=2.5, gid="largest"))
+        ax.set_xticks(range(k))
+        ax.set_yticks(range(k))
+        ax.set_xlabel("column (x)")
+        ax.set_ylabel("row (y)" if layer == 0 else "")
+        end = " (lowest z)" if layer == 0 else " (highest z)" if layer == k - 1 else ""
+        ax.set_title(f"layer {layer}{end}", fontsize="medium")
+    fig.colorbar(image, ax=list(axes), shrink=0.9, label=_metric_label(table) + ", per cell")
+    fig.suptitle(f"{table.get('run', '')} frames {table.get('frame')} → {table.get('other_frame')}, "
+                 f"k = {k}: {k} × {k} × {k} cells")
     fig.supxlabel(_normalization_note(table, whole), fontsize="small")
     return fig
 

@@ -158,19 +158,22 @@ def apply_bins(curve, change):
 
 
 def _blocks(result):
-    """blocks.get's cells as k x k arrays indexed [row, col] (row 0: lowest y)."""
+    """blocks.get's cells as k x k arrays indexed [row, col] (row 0: lowest y); for a 3D run
+    (dimension 3) k x k x k arrays indexed [layer, row, col] (layer 0: lowest z)."""
     out = Result(result)
     k = result["k"]
-    value = np.full((k, k), np.nan)
-    contacts = np.zeros((k, k, 2), dtype=np.int64)
-    points = np.zeros((k, k, 2), dtype=np.int64)
-    bounds = np.full((k, k, 2, 4), np.nan)
+    three_d = result.get("dimension", 2) == 3
+    shape = (k, k, k) if three_d else (k, k)
+    value = np.full(shape, np.nan)
+    contacts = np.zeros(shape + (2,), dtype=np.int64)
+    points = np.zeros(shape + (2,), dtype=np.int64)
+    bounds = np.full(shape + (2, 6 if three_d else 4), np.nan)
     for cell in result["cells"]:
-        r, c = cell["row"], cell["col"]
-        value[r, c] = math.inf if cell.get("infinite") else (np.nan if cell["value"] is None else cell["value"])
-        contacts[r, c] = cell["contacts"]
-        points[r, c] = cell["points"]
-        bounds[r, c] = cell["bounds"]
+        at = (cell["layer"], cell["row"], cell["col"]) if three_d else (cell["row"], cell["col"])
+        value[at] = math.inf if cell.get("infinite") else (np.nan if cell["value"] is None else cell["value"])
+        contacts[at] = cell["contacts"]
+        points[at] = cell["points"]
+        bounds[at] = cell["bounds"]
     out["value"] = value
     out["contacts"] = contacts
     out["points"] = points
@@ -333,7 +336,8 @@ class Client:
 
     def blocks(self, frame, other_frame, run=None, k=None, metric="bottleneck", dim=DEFAULT_DIM, force="normal", q=None,
                essential="floor"):
-        """blocks.get; adds k x k arrays value, contacts, points, bounds indexed [row, col]."""
+        """blocks.get; adds k x k arrays value, contacts, points, bounds indexed [row, col] (k x k x k
+        indexed [layer, row, col] for a 3D run)."""
         return _blocks(self.call("blocks.get", _params(run=run, frame=frame, other_frame=other_frame, k=k,
                                                        metric=metric, q=q, dim=dim, force=force,
                                                        essential=essential)))

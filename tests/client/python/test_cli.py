@@ -44,6 +44,10 @@ def test_network_and_its_change(run_file, tmp_path):
     out = tmp_path / "change.png"
     expect_png(plot("network", "--run-file", run_file, "--frame", 1, "--other-frame", 2, "--force", "tangential",
                     "--out", out), out)
+    # A slab or a projection is for 3D frames: on a 2D run it is an error that says so, not ignored.
+    r = plot("network", "--run-file", run_file, "--frame", 2, "--projection", "--out", tmp_path / "x.png")
+    assert r.returncode != 0 and "draw 3D frames" in one_line(r) and "is 2D" in one_line(r)
+    assert not (tmp_path / "x.png").exists()
 
 
 @pytest.mark.parametrize("args,option", [

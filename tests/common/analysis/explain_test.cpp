@@ -4,19 +4,26 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "common/codec/explain_json.hpp"
+#include "common/codec/explain_table.hpp"
+#include "tests/support/fcc_packing.hpp"
 #include "tests/support/lammps_frames.hpp"
 
 namespace fnet {
 namespace {
 
+constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+
+// z spans everything unless given: in a 2D frame every z is 0.
 struct Box {
-  double x_lo, x_hi, y_lo, y_hi;
-  bool holds(const std::array<double, 2>& p) const {
-    return p[0] >= x_lo && p[0] <= x_hi && p[1] >= y_lo && p[1] <= y_hi;
+  double x_lo, x_hi, y_lo, y_hi, z_lo = -kEverywhere, z_hi = kEverywhere;
+  bool holds(const std::array<double, 3>& p) const {
+    return p[0] >= x_lo && p[0] <= x_hi && p[1] >= y_lo && p[1] <= y_hi && p[2] >= z_lo && p[2] <= z_hi;
   }
 };
 
@@ -34,7 +41,7 @@ Box lower_left_corner(const Frame& frame, double fraction) { return corner_of(fr
 // Both grains of the contact inside the box.
 bool inside(const Frame& frame, const Contact& c, const Box& box) {
   const Particle &p = frame.particles[c.i], &q = frame.particles[c.j];
-  return box.holds({p.x, p.y}) && box.holds({q.x, q.y});
+  return box.holds({p.x, p.y, p.z}) && box.holds({q.x, q.y, q.z});
 }
 
 // The frame with the forces of every contact inside the box multiplied by `factor`.
@@ -55,8 +62,9 @@ Frame strengthened(const Frame& frame, const Box& box, double factor, std::size_
     if (s->positions.size() != s->grains.size()) return ::testing::AssertionFailure() << "positions missing";
     for (std::size_t k = 0; k < s->grains.size(); ++k)
       if (!box.holds(s->positions[k]))
-        return ::testing::AssertionFailure() << "grain " << s->grains[k] << " at (" << s->positions[k][0] << ", "
-                                             << s->positions[k][1] << ") is outside the corner";
+        return ::testing::AssertionFailure()
+               << "grain " << s->grains[k] << " at (" << s->positions[k][0] << ", " << s->positions[k][1] << ", "
+               << s->positions[k][2] << ") is outside the corner";
   }
   return ::testing::AssertionSuccess();
 }
@@ -145,6 +153,44 @@ TEST(Explain, BadRequestsAreRefused) {
   bad.contacts.push_back({0, 0, 1.0, 0.0});
   EXPECT_THROW(explain(a, bad, {DistanceMetric::bottleneck(), 1, ForceKind::normal, EssentialConvention::floor, 1}),
                FrameError);
+}
+
+// A 3D packing: the change planted in one corner octant is found there in x, y and z, and every
+// position carries its grain's z, in the JSON and the table too.
+TEST(Explain, APlantedChangeInA3DFrameIsFoundInItsCornerInZToo) {
+  const Frame a = testing::fcc_frame({.cells = 5});
+  validate(a);
+  // The octant of lowest x and y and highest z, a quarter of the extent each way.
+  double lo = kEverywhere, hi = -kEverywhere;
+  for (const Particle& p : a.particles) lo = std::min(lo, p.x), hi = std::max(hi, p.x);  // a cube: x = y = z
+  const double q = 0.3 * (hi - lo);
+  const Box corner{lo, lo + q, lo, lo + q, hi - q, hi};
+  std::size_t changed = 0;
+  Frame b = strengthened(a, corner, 3.0, changed);
+  ASSERT_GT(changed, 20u);
+  // Spread the planted forces, so that the corner is not a uniformly scaled copy.
+  for (std::size_t n = 0; n < b.contacts.size(); ++n)
+    if (inside(a, a.contacts[n], corner)) b.contacts[n].fn *= 1 + 0.05 * static_cast<double>(n % 7);
+  for (const int dim : {0, 1}) {
+    const ExplainRequest request{DistanceMetric::bottleneck(), dim, ForceKind::normal, EssentialConvention::floor, 3};
+    const Explanation e = explain(a, b, request);
+    ASSERT_FALSE(e.terms.empty()) << "PD" << dim;
+    ASSERT_TRUE(e.terms[0].b) << "PD" << dim;
+    EXPECT_TRUE(in_box(e.terms[0].b, corner)) << "PD" << dim;
+    EXPECT_EQ(e.terms[0].b->birth_simplex.dimension, 3);
+    const nlohmann::json j = explain_json(a, b, request);
+    const nlohmann::json& simplex = j["explain"][0]["b"]["birth_simplex"];
+    ASSERT_EQ(simplex["positions"].size(), simplex["grains"].size());
+    for (std::size_t k = 0; k < simplex["grains"].size(); ++k) {
+      const Particle& p = b.particles[simplex["grains"][k].get<std::size_t>()];
+      EXPECT_EQ(simplex["positions"][k], nlohmann::json({p.x, p.y, p.z})) << "PD" << dim;
+    }
+    nlohmann::json answer = j;
+    answer["dim"] = dim, answer["force"] = "normal", answer["essential"] = "floor";
+    std::ostringstream table;
+    write_explain_table(table, answer, "d_B");
+    EXPECT_NE(table.str().find("where (x, y, z)"), std::string::npos) << table.str();
+  }
 }
 
 }  // namespace

@@ -47,5 +47,25 @@ TEST(ExplainTable, TheTableSaysWhatAAndBAre) {
                                           ::testing::HasSubstr("where (x, y)"), ::testing::HasSubstr("a = b (1, 2)")));
 }
 
+// In a 3D frame each position has its z: "where" is the centre in x, y and z, and the header says so.
+TEST(ExplainTable, A3DFramesCentreHasItsZ) {
+  json a = point(5, {}), b = point(3, {});
+  a["birth_simplex"] = {{"grains", {4, 9, 11}}, {"positions", {{0, 0, 0}, {3, 0, 1}, {0, 3, 5}}}};
+  b["birth_simplex"] = {{"grains", {7}}, {"positions", {{1, 1, 2}}}};
+  EXPECT_EQ(explain_where({{"a", a}, {"b", b}}), "a = b (1, 1, 2)");
+  EXPECT_EQ(explain_where({{"a", nullptr}, {"b", a}}), "b (1, 1, 2)");
+  b["birth_simplex"]["positions"] = {{1, 1, 2.5}};
+  EXPECT_EQ(explain_where({{"a", a}, {"b", b}}), "a (1, 1, 2) b (1, 1, 2.5)");
+  const json answer = {{"dim", 1},
+                       {"force", "normal"},
+                       {"essential", "floor"},
+                       {"value", 2.0},
+                       {"explain", {{{"rank", 1}, {"cost", 2.0}, {"a", nullptr}, {"b", a}}}}};
+  std::ostringstream out;
+  write_explain_table(out, answer, "bottleneck");
+  EXPECT_THAT(out.str(), ::testing::AllOf(::testing::HasSubstr("where (x, y, z)"), ::testing::HasSubstr("4-9-11"),
+                                          ::testing::HasSubstr("b (1, 1, 2)")));
+}
+
 }  // namespace
 }  // namespace fnet

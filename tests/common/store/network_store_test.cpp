@@ -21,6 +21,7 @@ const fs::path kStoreV2 = fs::path(FNET_TEST_DATA) / "store-v2" / "legacy-v2.h5"
 AnalyzedFrame with_network(std::uint32_t index, Frame network) {
   AnalyzedFrame f;
   f.header = {"nets", index, 100ull * index, 0.5, 0.8, 3.5};
+  f.dimension = network.dimension;
   f.diagrams = analyze_frame(network);
   if (index > 0) f.previous = index - 1;
   f.network = std::make_shared<const Frame>(std::move(network));

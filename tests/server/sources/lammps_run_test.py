@@ -1,47 +1,36 @@
 #!/usr/bin/env python3
 """proto/lammps.md run as written, against the numbers LAMMPS itself reports.
 
-For pair_style gran/hooke/history and for granular: writes a 2D input (196 polydisperse disks in
-a periodic box compressed by fix deform, then relaxed), adds the page's lammps blocks to it, runs
+For pair_style gran/hooke/history and for granular: writes a 2D input (tests/support/lammps_inputs.py:
+196 polydisperse disks in a periodic box compressed by fix deform, then relaxed), adds the page's
+lammps blocks to it, runs
 Debian's lmp, runs the page's sh blocks (fnet-analyze store) in the dumps' folder, and checks the
 stores against LAMMPS: the contacts of each frame against compute contact/atom, rho against the
 disks' area over the box LAMMPS computes, the forces against the pair/local dump read here, the
 force columns' meaning against LAMMPS's per-atom forces, Z
 against the contacts' normal forces, the force balance holding (--check-balance in the page's
-line) and failing when the normal force is read as the whole pair force. Exit status 0 when every
-check holds, 1 otherwise.
+line) and failing when the normal force is read as the whole pair force, the grains dumped
+with their z (one value, fix enforce2d) read as the same 2D frames, the page's dumps written
+gzip-compressed by LAMMPS (custom/gz, local/gz) read as the same frames, and --rho column on a
+dumped per-atom copy of LAMMPS's rho. Exit status 0 when every check
+holds, 1 otherwise.
 """
-import argparse
 import json
-import math
 import os
-import re
 import shutil
 import subprocess
 import sys
 
 import h5py
+import numpy as np
 
-BASE = """dimension 2
-boundary p p p
-atom_style sphere
-comm_modify vel yes
-lattice sq 0.694
-region box block 0 16.8 0 16.8 -0.5 0.5 units box
-create_box 1 box
-create_atoms 1 box
-velocity all create 0.5 {seed} loop geom
-variable d atom 0.8+0.4*random(0,1,{seed})
-set group all diameter v_d
-set group all density 1.0
-{pair}
-neighbor 0.3 bin
-timestep 0.001
-fix move all nve/sphere
-fix flat all enforce2d
-fix calm all viscous 2.0
-fix squeeze all deform 1 x final 0 13.4 y final 0 13.4 remap x units box
-run 8000 post no
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import lammps_inputs  # noqa: E402
+from lammps_doc import blocks, test_arguments, thermo_values  # noqa: E402
+
+# After the disks: squeezed and relaxed, then the page's lines, LAMMPS's own counts, and the test's
+# dumps: the per-atom forces, and the grains with their z (one value in a 2D run).
+PROTOCOL = lammps_inputs.DISKS_SQUEEZE + """run 8000 post no
 unfix squeeze
 run 6000 post no
 compute fnet_contacts all contact/atom
@@ -50,13 +39,24 @@ compute fnet_pairs_touching all reduce sum c_fnet_contacts
 fix fnet_numbers all ave/time 1000 1 1000 c_fnet_pairs_touching v_fnet_rho file lammps_numbers.txt format " %.12g"
 {doc}
 dump fnet_test_forces all custom 1000 forces.*.txt id fx fy
+dump fnet_test_z all custom 1000 atoms-z.*.txt id type x y z radius
+variable fnet_rho_atom atom v_fnet_rho
+dump fnet_test_rho all custom 1000 atoms-rho.*.txt id type x y radius v_fnet_rho_atom
+dump_modify fnet_test_rho format float %.12g
+{gz}
 run 3000 post no
 """
 
-PAIRS = {
-    "gran/hooke/history": "pair_style gran/hooke/history 2000.0 NULL 50.0 NULL 0.5 1\npair_coeff * *",
-    "granular": "pair_style granular\npair_coeff * * hooke 2000.0 50.0 tangential linear_history 1000.0 1.0 0.5",
-}
+
+def gz_dumps(doc_lines):
+    """The page's two dumps again, gzip-compressed by LAMMPS itself (custom/gz, local/gz)."""
+    out = []
+    for line in doc_lines.splitlines():
+        for name, style in (("fnet_atoms", "custom"), ("fnet_pairs", "local")):
+            if line.startswith(f"dump {name} all {style} "):
+                out.append(line.replace(f"dump {name} all {style} ", f"dump {name}_gz all {style}/gz ")
+                           .replace(".*.txt", ".*.txt.gz"))
+    return "\n".join(out)
 
 failures = []
 
@@ -65,10 +65,6 @@ def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what)
     if not ok:
         failures.append(what)
-
-
-def blocks(doc, lang):
-    return re.findall(r"```" + lang + r"\n(.*?)```", doc, re.S)
 
 
 def read_dump(path):
@@ -92,11 +88,19 @@ def stored(path):
         return out
 
 
+def source_config(path):
+    """The "source" of the store's last announcement's config_json."""
+    with h5py.File(path, "r") as f:
+        announcement = json.loads(f["announcements"][-1].decode().rstrip("\0"))
+    return json.loads(announcement["config_json"])["source"]
+
+
 def run_style(style, args, doc, work):
     print(f"== pair_style {style}")
     os.makedirs(work)
-    text = BASE.format(seed=4711, pair=PAIRS[style], doc="\n".join(blocks(doc, "lammps")),
-                       rho=re.findall(r"```lammps rho\n(.*?)```", doc, re.S)[0])
+    lines = "\n".join(blocks(doc, "lammps"))
+    text = lammps_inputs.disks(4711, style) + PROTOCOL.format(doc=lines, rho=blocks(doc, "lammps rho")[0],
+                                                              gz=gz_dumps(lines))
     open(os.path.join(work, "in.fnet"), "w").write(text)
     r = subprocess.run([args.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
                        capture_output=True, text=True)
@@ -163,21 +167,36 @@ def run_style(style, args, doc, work):
         pushing = sum(1 for v in want.values() if v[0] > 0)
         check(abs(f["z"] - 2 * pushing / f["grains"]) < 1e-12, f"step {step}: Z {f['z']:.6f} = 2 x {pushing} / {f['grains']}")
     # --rho log: ρ as the log prints it, near fnet's own.
-    printed, header = {}, None
-    for l in open(os.path.join(work, "log.lammps")):
-        w = l.split()
-        if w[:1] == ["Step"]:
-            header = w
-        elif l.startswith("Loop time"):
-            header = None
-        elif header and "v_fnet_rho" in header and len(w) == len(header):
-            printed.setdefault(int(w[0]), float(w[header.index("v_fnet_rho")]))
+    printed = thermo_values(os.path.join(work, "log.lammps"), "v_fnet_rho")
     from_log = stored(os.path.join(work, "stores", "packing-rho.h5"))
     check([g["rho"] for g in from_log] == [printed.get(g["step"]) for g in from_log],
           f"--rho log: the log's values {[printed.get(g['step']) for g in from_log]}")
     # (the dump's radii have 6 digits: fnet's own rho is as close as that)
     check(all(abs(g["rho"] - f["rho"]) < 1e-5 * f["rho"] for f, g in zip(frames, from_log)),
           "--rho log: fnet's own rho of the periodic box within the dump's digits")
+    # --rho column: the per-atom copy of the same variable, dumped with 12 digits.
+    store_lines = [b for b in blocks(doc, "sh") if "--follow" not in b and "--run-id packing " in b]
+    variants = {"packing-column": ("atoms.*.txt", "atoms-rho.*.txt", " --rho column:v_fnet_rho_atom"),
+                "packing-gz": ("'atoms.*.txt' --lammps-pairs 'pairs.*.txt'",
+                               "'atoms.*.txt.gz' --lammps-pairs 'pairs.*.txt.gz'", "")}
+    for run, (old, new, extra) in variants.items():
+        line = store_lines[0].strip().replace(old, new).replace("--run-id packing ", f"--run-id {run} ") + extra
+        r = subprocess.run(line, shell=True, cwd=work, env=env, capture_output=True, text=True)
+        check(r.returncode == 0, f"{line}: exit {r.returncode} {r.stderr.strip()}")
+    if os.path.exists(os.path.join(work, "stores", "packing-column.h5")):
+        column = stored(os.path.join(work, "stores", "packing-column.h5"))
+        check([g["step"] for g in column] == steps and all(
+            abs(g["rho"] - lammps[g["step"]][1]) < 1e-11 * g["rho"] for g in column if g["step"] in lammps),
+            f"--rho column: LAMMPS's rho to 12 digits {[g['rho'] for g in column]}")
+        check(source_config(os.path.join(work, "stores", "packing-column.h5"))["rho"] == "column:v_fnet_rho_atom",
+              "--rho column: recorded in the announcement")
+    # Dumps LAMMPS wrote compressed (custom/gz, local/gz): the same frames as the plain ones.
+    if os.path.exists(os.path.join(work, "stores", "packing-gz.h5")):
+        gz = stored(os.path.join(work, "stores", "packing-gz.h5"))
+        check(len(gz) == len(frames) and all(
+            g["step"] == f["step"] and g["rho"] == f["rho"] and g["z"] == f["z"]
+            and np.array_equal(g["pairs"], f["pairs"]) and np.array_equal(g["forces"], f["forces"])
+            for f, g in zip(frames, gz)), "gzip dumps written by LAMMPS: the same frames as the plain dumps")
     # diagram and explain read the frames store stored: the diagram's vertices are the grains, its
     # edges the contacts with F_n > 0, the same from the file and from the pattern; explain the same
     # from two files and from two TIMESTEPs of the pattern, its grains with positions.
@@ -196,6 +215,21 @@ def run_style(style, args, doc, work):
           f"explain: the same from two TIMESTEPs and from two files ({ex['value']})")
     check(all("positions" in t["a"]["birth_simplex"] for t in ex["explain"] if t["a"]),
           "explain: the grains have positions")
+    # The grains dumped with their z, one value in a 2D run (fix enforce2d): the same frames, 2D.
+    r = subprocess.run(["fnet-analyze", "store", "--lammps-atoms", "atoms-z.*.txt", "--lammps-pairs", "pairs.*.txt",
+                        "--run-id", "packing-z", "--data-dir", "stores"], cwd=work, env=env, capture_output=True,
+                       text=True)
+    check(r.returncode == 0, f"store of the dumps with z: exit {r.returncode} {r.stderr.strip()}")
+    if r.returncode == 0:
+        with_z = stored(os.path.join(work, "stores", "packing-z.h5"))
+        same = len(with_z) == len(frames) and all(
+            g["rho"] == f["rho"] and g["z"] == f["z"] and np.array_equal(g["pairs"], f["pairs"])
+            and np.array_equal(g["forces"], f["forces"]) for f, g in zip(frames, with_z))
+        check(same, "a z column of one value: the same frames as without it")
+        dims = [source_config(os.path.join(work, "stores", f"{run}.h5"))["dimension"] for run in ("packing", "packing-z")]
+        with h5py.File(os.path.join(work, "stores", "packing-z.h5"), "r") as h:
+            flat = np.all(h["dimension"][:] == 2) and not np.any(h["particle_z"][:])
+        check(dims == [2, 2] and flat, f"the runs' dimension, without and with z: {dims}; every frame 2D, z = 0")
     # The normal force read as the whole pair force (the tangential columns forgotten): the balance
     # fails, naming a frame.
     wrong = "--columns 'fx=c_fnet_force[1],fy=c_fnet_force[2]'"
@@ -207,15 +241,10 @@ def run_style(style, args, doc, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fnet-analyze", required=True)
-    ap.add_argument("--lmp", default="lmp")
-    ap.add_argument("--doc", required=True)
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
+    a = test_arguments(__doc__)
     shutil.rmtree(a.workdir, ignore_errors=True)
     doc = open(a.doc).read()
-    for k, style in enumerate(PAIRS):
+    for k, style in enumerate(lammps_inputs.PAIR_STYLES):
         run_style(style, a, doc, os.path.join(a.workdir, f"style{k}"))
     print("FAILED: " + "; ".join(failures) if failures else "all checks hold")
     return 1 if failures else 0

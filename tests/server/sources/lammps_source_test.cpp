@@ -17,46 +17,25 @@
 #include <gtest/gtest.h>
 
 #include "server/sources/lammps_dump.hpp"
-#include "server/sources/run_source.hpp"
-#include "server/sources/source_kinds.hpp"
+#include "tests/server/sources/run_reading.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::sources {
 namespace {
 
 namespace fs = std::filesystem;
-namespace po = boost::program_options;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::unique_ptr<FrameSource> open_source(const fs::path& dir, std::vector<std::string> args) {
-  args.insert(args.end(), {"--run-id", "lmp"});
-  for (std::string& a : args) a = a.starts_with("@") ? (dir / a.substr(1)).string() : a;
-  const std::vector<SourceKind> kinds = run_kinds();
-  po::options_description options;
-  add_run_options(kinds, options);
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
-  po::notify(vm);
-  return open_run(kinds, vm);
+  return testing::open_run_source(dir, std::move(args));
 }
 
 std::vector<RunFrame> read_run(const fs::path& dir, const std::vector<std::string>& args) {
-  const auto source = open_source(dir, args);
-  std::vector<RunFrame> frames;
-  while (auto f = source->next()) frames.push_back(std::move(*f));
-  return frames;
+  return testing::read_run_frames(dir, args);
 }
 
-std::string what_of(const fs::path& dir, const std::vector<std::string>& args) {
-  try {
-    read_run(dir, args);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error for " << ::testing::PrintToString(args);
-  return "";
-}
+std::string what_of(const fs::path& dir, const std::vector<std::string>& args) { return testing::run_error(dir, args); }
 
 std::string header(const std::string& item, std::uint64_t step, std::size_t rows) {
   return "ITEM: TIMESTEP\n" + std::to_string(step) + "\nITEM: NUMBER OF " + item + "\n" + std::to_string(rows) +

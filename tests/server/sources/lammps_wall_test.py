@@ -10,41 +10,15 @@ columns' meaning (the force on the grain, the contact point) as LAMMPS fills the
 count of wall contacts is compared with the grains fnet finds out of balance without them.
 Exit 0 when every check holds, 1 otherwise.
 """
-import argparse
 import os
 import re
 import shutil
 import subprocess
 import sys
 
-INPUT = """dimension 2
-boundary p f p
-atom_style sphere
-comm_modify vel yes
-region box block 0 10 0 4 -0.5 0.5 units box
-create_box 1 box
-lattice sq 1.23
-region fill block 0 10 0.5 3.7 -0.5 0.5 units box
-create_atoms 1 region fill
-variable d atom 1.0+0.1*random(0,1,4711)
-set group all diameter v_d
-set group all density 1.0
-pair_style gran/hooke/history 2000.0 NULL 50.0 NULL 0.5 1
-pair_coeff * *
-timestep 0.001
-fix move all nve/sphere
-fix flat all enforce2d
-fix calm all viscous 2.0
-{fix}
-run 20000 post no
-compute fnet_pair all property/local patom1 patom2 cutoff radius
-compute fnet_force all pair/local fx fy fz p1 p2 p3 cutoff radius
-compute fnet_walls all reduce sum f_w[1]
-fix fnet_numbers all ave/time 1000 1 1000 c_fnet_walls file wall_numbers.txt
-{dump}
-dump fnet_pairs all local 1000 pairs.*.txt c_fnet_pair[1] c_fnet_pair[2] c_fnet_force[1] c_fnet_force[2] c_fnet_force[3] c_fnet_force[4] c_fnet_force[5] c_fnet_force[6]
-run 2000 post no
-"""
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import lammps_inputs  # noqa: E402
+from lammps_doc import test_arguments  # noqa: E402
 
 failures = []
 
@@ -56,12 +30,7 @@ def check(ok, what):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fnet-analyze", required=True)
-    ap.add_argument("--lmp", default="lmp")
-    ap.add_argument("--doc", required=True)
-    ap.add_argument("--workdir", required=True)
-    a = ap.parse_args()
+    a = test_arguments(__doc__)
     work = os.path.abspath(a.workdir)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
@@ -70,7 +39,7 @@ def main():
     store_line = re.findall(r"```sh walls\n(.*?)```", doc, re.S)[0].strip()
     fix = next(l for l in lines if l.startswith("fix "))
     dump = next(l for l in lines if l.startswith("dump "))
-    open(os.path.join(work, "in.fnet"), "w").write(INPUT.replace("{fix}", fix).replace("{dump}", dump))
+    open(os.path.join(work, "in.fnet"), "w").write(lammps_inputs.disks_between_planes(fix, dump))
     r = subprocess.run([a.lmp, "-in", "in.fnet", "-log", "log.lammps", "-screen", "none", "-nocite"], cwd=work,
                        capture_output=True, text=True)
     check(r.returncode == 0, f"lmp ran ({r.returncode})")

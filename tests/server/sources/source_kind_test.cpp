@@ -88,11 +88,11 @@ TEST(SourceKind, UsageLinesListEachKindsFlags) {
   EXPECT_EQ(run_usage(run_kinds()),
             "(--run-file F | --csv-dir DIR --run-id R | --lammps-atoms PATTERN --lammps-pairs PATTERN "
             "[--wall-types T,...] [--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] "
-            "[--follow] "
-            "[--idle-timeout SECONDS] [--lammps-log LOG] --run-id R)");
+            "[--dimension 2|3] [--lammps-log LOG] [--follow] [--idle-timeout SECONDS] --run-id R)");
   EXPECT_EQ(source_usage(frame_kinds()),
             "(--contacts C.csv [--particles P.csv] | --lammps-atoms FILE --lammps-pairs FILE [--wall-types T,...] "
-            "[--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] [--timestep N])");
+            "[--columns ROLE=NAME,...] [--check-balance TOL] [--rho log:LOG:COLUMN|column:NAME] [--dimension 2|3] "
+            "[--lammps-log LOG] [--timestep N])");
   EXPECT_EQ(run_usage(kKinds), "(--recording F [--follow] | --atoms PATTERN --pairs PATTERN [--follow] --run-id R)");
 }
 
