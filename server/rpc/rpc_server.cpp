@@ -8,13 +8,13 @@ namespace fnet::rpc {
 namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
-Session::Session(tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
+TcpPeer::TcpPeer(tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
                  const Access& access, std::function<void()> on_end)
     : Connection(std::move(strand), "\n", limits, handler, access, false, std::move(on_end)),
       socket_(std::move(socket)),
       input_(limits.max_line_bytes + 1) {}
 
-void Session::read_next() {
+void TcpPeer::read_next() {
   asio::async_read_until(socket_, input_, '\n',
                          asio::bind_executor(strand_, [self = self()](boost::system::error_code ec, std::size_t n) {
                            if (ec == asio::error::not_found)  // the line outgrew the buffer's limit
@@ -31,7 +31,7 @@ void Session::read_next() {
                          }));
 }
 
-void Session::write(const std::string& text) {
+void TcpPeer::write(const std::string& text) {
   asio::async_write(
       socket_, asio::buffer(text),
       asio::bind_executor(strand_, [self = self()](boost::system::error_code ec, std::size_t) { self->written(ec); }));
@@ -39,7 +39,7 @@ void Session::write(const std::string& text) {
 
 // After the last reply: half-close, then discard what the client is still sending (for at most
 // a few seconds) so that closing does not reset the connection and destroy the reply in flight.
-void Session::finish() {
+void TcpPeer::finish() {
   boost::system::error_code ignored;
   socket_.shutdown(tcp::socket::shutdown_send, ignored);
   auto timer = std::make_shared<asio::steady_timer>(socket_.get_executor(), std::chrono::seconds(3));
@@ -47,7 +47,7 @@ void Session::finish() {
   drain(timer);
 }
 
-void Session::drain(const std::shared_ptr<asio::steady_timer>& timer) {
+void TcpPeer::drain(const std::shared_ptr<asio::steady_timer>& timer) {
   auto buffer = std::make_shared<std::array<char, 65536>>();
   socket_.async_read_some(
       asio::buffer(*buffer),
@@ -60,7 +60,7 @@ void Session::drain(const std::shared_ptr<asio::steady_timer>& timer) {
       }));
 }
 
-void Session::close_transport() {
+void TcpPeer::close_transport() {
   boost::system::error_code ignored;
   socket_.shutdown(tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
@@ -82,7 +82,7 @@ Server::Server(asio::io_context& io, const std::string& address, unsigned short 
       access_(std::move(access)),
       listener_(io, address, port, limits_.max_connections, busy_line(limits_.max_connections),
                 [this](tcp::socket socket, Strand strand, std::shared_ptr<void> slot) {
-                  std::make_shared<Session>(std::move(socket), std::move(strand), limits_, handler_, access_,
+                  std::make_shared<TcpPeer>(std::move(socket), std::move(strand), limits_, handler_, access_,
                                             [slot = std::move(slot)] {})
                       ->start();
                 }) {}

@@ -1,6 +1,6 @@
 // Newline-delimited JSON-RPC 2.0 over TCP (Boost.Asio). One request per line, one response per
 // line, matched by id (a heavy call may be answered after later ones); handlers may also push
-// notifications to their session at any time, from any thread. The bounds on what a client can
+// notifications to their connection at any time, from any thread. The bounds on what a client can
 // make the server hold are those of every connection (connection.hpp) plus the line length and
 // the number of connections.
 #pragma once
@@ -21,13 +21,13 @@
 namespace fnet::rpc {
 
 // One TCP connection: newline-delimited requests in, responses and notifications out.
-class Session final : public Connection {
+class TcpPeer final : public Connection {
  public:
-  Session(boost::asio::ip::tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
+  TcpPeer(boost::asio::ip::tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
           const Access& access, std::function<void()> on_end);
 
  private:
-  std::shared_ptr<Session> self() { return std::static_pointer_cast<Session>(shared_from_this()); }
+  std::shared_ptr<TcpPeer> self() { return std::static_pointer_cast<TcpPeer>(shared_from_this()); }
   void read_next() override;
   void write(const std::string& text) override;
   bool is_open() const override { return socket_.is_open(); }

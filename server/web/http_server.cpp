@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "server/web/http_session.hpp"
+#include "server/web/http_connection.hpp"
 
 namespace fnet::web {
 
@@ -19,8 +19,8 @@ HttpServer::HttpServer(boost::asio::io_context& io, const std::string& address, 
       access_(std::move(access)),
       listener_(io, address, port, limits_.max_connections, kBusy,
                 [this](boost::asio::ip::tcp::socket socket, rpc::Strand strand, std::shared_ptr<void> slot) {
-                  std::make_shared<HttpSession>(std::move(socket), std::move(strand), limits_, handler_, access_,
-                                                listener_.port(), std::move(slot))
+                  std::make_shared<HttpConnection>(std::move(socket), std::move(strand), limits_, handler_, access_,
+                                                   listener_.port(), std::move(slot))
                       ->start();
                 }) {}
 

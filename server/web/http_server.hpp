@@ -1,5 +1,5 @@
 // fnet-server's dashboard over HTTP (Boost.Beast): the page and its scripts (web_assets.hpp) and,
-// at kRpcPath, a WebSocket carrying the JSON-RPC API (websocket_session.hpp) through the same
+// at kRpcPath, a WebSocket carrying the JSON-RPC API (websocket_peer.hpp) through the same
 // Handler as the TCP API. Connections (HTTP and WebSocket together) are bounded as the API's
 // are; beyond the bound a connection gets 503 and is closed.
 #pragma once

@@ -16,17 +16,17 @@
 
 namespace fnet::web {
 
-class WebSocketSession final : public rpc::Connection {
+class WebSocketPeer final : public rpc::Connection {
  public:
   // The upgrade was admitted (http_access.hpp): the connection has presented the token `access`
   // asks for, if any.
-  WebSocketSession(boost::beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                   const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end);
+  WebSocketPeer(boost::beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
+                const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end);
   // Completes the opening handshake that `upgrade` asked for, then reads.
   void accept(boost::beast::http::request<boost::beast::http::string_body> upgrade);
 
  private:
-  std::shared_ptr<WebSocketSession> self() { return std::static_pointer_cast<WebSocketSession>(shared_from_this()); }
+  std::shared_ptr<WebSocketPeer> self() { return std::static_pointer_cast<WebSocketPeer>(shared_from_this()); }
   void read_next() override;
   void write(const std::string& text) override;
   bool is_open() const override;

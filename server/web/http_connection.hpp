@@ -1,6 +1,6 @@
 // One HTTP connection of the dashboard: requests read one after another (keep-alive), each
 // admitted or not (http_access.hpp), then answered with an asset, an error status, or, for
-// kRpcPath, handed over to a WebSocket session.
+// kRpcPath, handed over to a WebSocket peer.
 #pragma once
 
 #include <memory>
@@ -21,12 +21,13 @@ using Response = boost::beast::http::response<boost::beast::http::string_body>;
 // whose body says what is wrong.
 Response answer(const Request& request);
 
-class HttpSession : public std::enable_shared_from_this<HttpSession> {
+class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
  public:
-  // `slot` is held while the connection lives (its WebSocket session included): the count of
+  // `slot` is held while the connection lives (its WebSocket peer included): the count of
   // connections goes down when the last holder ends.
-  HttpSession(boost::asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-              const rpc::Handler& handler, const rpc::Access& access, unsigned short port, std::shared_ptr<void> slot);
+  HttpConnection(boost::asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
+                 const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
+                 std::shared_ptr<void> slot);
   void start();
 
  private:

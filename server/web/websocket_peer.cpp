@@ -1,4 +1,4 @@
-#include "server/web/websocket_session.hpp"
+#include "server/web/websocket_peer.hpp"
 
 #include <string>
 
@@ -11,8 +11,8 @@ namespace {
 constexpr std::size_t kReadChunk = 64 << 10;
 }
 
-WebSocketSession::WebSocketSession(beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                                   const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end)
+WebSocketPeer::WebSocketPeer(beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
+                             const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end)
     : Connection(std::move(strand), "", limits, handler, access, true, std::move(on_end)), ws_(std::move(stream)) {
   // The bound on a message is ours (read_next), so that its client is told why it is closed.
   ws_.read_message_max(0);
@@ -20,7 +20,7 @@ WebSocketSession::WebSocketSession(beast::tcp_stream stream, rpc::Strand strand,
   ws_.text(true);
 }
 
-void WebSocketSession::accept(beast::http::request<beast::http::string_body> upgrade) {
+void WebSocketPeer::accept(beast::http::request<beast::http::string_body> upgrade) {
   auto request = std::make_shared<beast::http::request<beast::http::string_body>>(std::move(upgrade));
   asio::post(strand_, [self = self(), request] {
     self->ws_.async_accept(*request, asio::bind_executor(self->strand_, [self, request](beast::error_code ec) {
@@ -32,7 +32,7 @@ void WebSocketSession::accept(beast::http::request<beast::http::string_body> upg
 
 // A message is read in chunks, so that one longer than the limit is refused once the limit is
 // passed, before the rest of it is held.
-void WebSocketSession::read_next() {
+void WebSocketPeer::read_next() {
   ws_.async_read_some(
       input_, kReadChunk, asio::bind_executor(strand_, [self = self()](beast::error_code ec, std::size_t) {
         if (ec == websocket::error::closed) return self->input_ended();
@@ -58,20 +58,20 @@ void WebSocketSession::read_next() {
       }));
 }
 
-void WebSocketSession::write(const std::string& text) {
+void WebSocketPeer::write(const std::string& text) {
   ws_.async_write(asio::buffer(text), asio::bind_executor(strand_, [self = self()](beast::error_code ec, std::size_t) {
                     self->written(ec);
                   }));
 }
 
-bool WebSocketSession::is_open() const { return beast::get_lowest_layer(ws_).socket().is_open(); }
+bool WebSocketPeer::is_open() const { return beast::get_lowest_layer(ws_).socket().is_open(); }
 
 // The closing handshake (bounded by the stream's handshake timeout), then the socket.
-void WebSocketSession::finish() {
+void WebSocketPeer::finish() {
   ws_.async_close(close_code_, asio::bind_executor(strand_, [self = self()](beast::error_code) { self->close(); }));
 }
 
-void WebSocketSession::close_transport() {
+void WebSocketPeer::close_transport() {
   beast::error_code ignored;
   auto& socket = beast::get_lowest_layer(ws_).socket();
   socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);

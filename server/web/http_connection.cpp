@@ -1,4 +1,4 @@
-#include "server/web/http_session.hpp"
+#include "server/web/http_connection.hpp"
 
 #include <array>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include "server/web/http_access.hpp"
 #include "server/web/http_server.hpp"
 #include "server/web/web_assets.hpp"
-#include "server/web/websocket_session.hpp"
+#include "server/web/websocket_peer.hpp"
 
 namespace fnet::web {
 namespace asio = boost::asio;
@@ -63,9 +63,9 @@ Response answer(const Request& request) {
   return response(http::status::ok, request.version(), asset->content_type, std::string(asset->body));
 }
 
-HttpSession::HttpSession(asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-                         const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
-                         std::shared_ptr<void> slot)
+HttpConnection::HttpConnection(asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
+                               const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
+                               std::shared_ptr<void> slot)
     : stream_(std::move(socket)),
       strand_(std::move(strand)),
       limits_(limits),
@@ -74,11 +74,11 @@ HttpSession::HttpSession(asio::ip::tcp::socket socket, rpc::Strand strand, const
       port_(port),
       slot_(std::move(slot)) {}
 
-void HttpSession::start() {
+void HttpConnection::start() {
   asio::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read_request(); });
 }
 
-void HttpSession::read_request() {
+void HttpConnection::read_request() {
   parser_ = std::make_unique<http::request_parser<http::string_body>>();
   parser_->header_limit(kMaxHeaderBytes);
   parser_->body_limit(kMaxBodyBytes);
@@ -87,7 +87,7 @@ void HttpSession::read_request() {
                    [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
 }
 
-void HttpSession::on_request(beast::error_code ec) {
+void HttpConnection::on_request(beast::error_code ec) {
   if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::operation_aborted)
     return close();
   if (ec == http::error::header_limit || ec == http::error::body_limit) {
@@ -115,14 +115,14 @@ void HttpSession::on_request(beast::error_code ec) {
   if (beast::websocket::is_upgrade(request) && path_of(request.target()) == kRpcPath) {
     stream_.expires_never();
     const auto ws =
-        std::make_shared<WebSocketSession>(std::move(stream_), strand_, limits_, handler_, access_, [slot = slot_] {});
+        std::make_shared<WebSocketPeer>(std::move(stream_), strand_, limits_, handler_, access_, [slot = slot_] {});
     ws->accept(std::move(request));
     return;
   }
   send(answer(request));
 }
 
-void HttpSession::send(Response response) {
+void HttpConnection::send(Response response) {
   auto held = std::make_shared<Response>(std::move(response));
   http::async_write(stream_, *held, [self = shared_from_this(), held](beast::error_code ec, std::size_t) {
     if (ec || !held->keep_alive()) return self->close();
@@ -132,14 +132,14 @@ void HttpSession::send(Response response) {
 
 // Half-closes, then discards what the client still sends (for a few seconds at most), so that
 // closing does not reset the connection and destroy the response in flight.
-void HttpSession::close() {
+void HttpConnection::close() {
   beast::error_code ignored;
   stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
   stream_.expires_after(std::chrono::seconds(3));
   drain();
 }
 
-void HttpSession::drain() {
+void HttpConnection::drain() {
   auto scratch = std::make_shared<std::array<char, 16384>>();
   stream_.async_read_some(asio::buffer(*scratch),
                           [self = shared_from_this(), scratch](beast::error_code ec, std::size_t) {
