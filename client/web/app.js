@@ -22,8 +22,18 @@ const runView = new RunView(rpc, options);
 const ensembleView = new EnsembleView(rpc, options);
 const state = { runs: [], ensembles: [], selected: null, history: new Map() };
 
+// The main thread's tasks longer than 50 ms (Chromium's Long Tasks API), for the benchmark.
+const longTasks = [];
+try {
+  new PerformanceObserver((list) => list.getEntries().forEach((e) => longTasks.push(e.duration)))
+    .observe({ type: "longtask", buffered: true });
+} catch (e) {
+  // a browser without the Long Tasks API: none recorded
+}
+
 window.fnetDashboard = {
   rpc,
+  longTasks,
   runView,
   ensembleView,
   state,
@@ -166,7 +176,7 @@ for (const id of ["metric", "dim", "force", "essential", "log", "axis"])
     else ensembleView.optionsChanged(id === "log");
   });
 window.addEventListener("resize", () => {
-  runView.redraw();
+  runView.resize();
   ensembleView.redraw();
 });
 

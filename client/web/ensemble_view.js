@@ -131,6 +131,8 @@ export class EnsembleView {
 
   redraw() {
     if (!this.ensemble) return;
+    const start = performance.now();
+    this.redrawMs = this.redrawMs || [];
     const o = this.options();
     const axis = o.axis === "rho" ? "packing fraction ρ" : "ρ − ρ_J (each run's own ρ_J)";
     const rhoJ = this.info && this.info.rho_j.mean !== null ? this.info.rho_j.mean : null;
@@ -163,5 +165,7 @@ export class EnsembleView {
       vlines,
       empty: "no binned frames yet",
     });
+    this.redrawMs.push(performance.now() - start);
+    if (this.redrawMs.length > 1000) this.redrawMs.shift();
   }
 }

@@ -7,13 +7,21 @@
 // force over its own frame's mean force; a contact present in one frame only changes from or to
 // 0), the cells of a block table are shaded by their distance, and the explained terms of the
 // distance are ringed where they sit, numbered by rank. Segments are drawn in one path per colour
-// bin, so that a frame of 20 000 grains draws in one pass.
+// bin, and a large network in several tasks (the page answers input in between), so that a frame of
+// 20 000 grains never holds the page for long.
 
 import { changeColor, forceColor, heatColor } from "./colors.js";
 import { fitCanvas } from "./plot.js";
 
 const BINS = 24;
 const FORCE_TOP = 3;  // force / mean force at the top of the scale
+const SEGMENTS_PER_TASK = 15000;
+
+// Lets the page run its other tasks; false when a newer drawing has taken the canvas meanwhile.
+async function stillMine(canvas, token) {
+  await new Promise((resolve) => setTimeout(resolve, 0));
+  return canvas.fnetDrawing === token;
+}
 
 function contactKey(i, j) {
   return i < j ? i * 4294967296 + j : j * 4294967296 + i;
@@ -64,16 +72,21 @@ function drawGrains(ctx, net, t) {
 }
 
 // Segments by bin: `binOf(k)` gives contact k's bin (or -1: not drawn), `colorOf(b)` and
-// `widthOf(b)` the bin's colour and width in pixels.
-function drawSegments(ctx, net, t, count, ends, binOf, colorOf, widthOf) {
+// `widthOf(b)` the bin's colour and width in pixels. False when the drawing was given up.
+async function drawSegments(canvas, token, ctx, t, count, ends, binOf, colorOf, widthOf) {
   const paths = Array.from({ length: BINS }, () => []);
   for (let k = 0; k < count; ++k) {
     const b = binOf(k);
     if (b >= 0) paths[b].push(k);
   }
-  ctx.lineCap = "round";
+  let drawn = 0;
   for (let b = 0; b < BINS; ++b) {
     if (!paths[b].length) continue;
+    if (drawn >= SEGMENTS_PER_TASK) {
+      if (!(await stillMine(canvas, token))) return false;
+      drawn = 0;
+    }
+    ctx.lineCap = "round";
     ctx.beginPath();
     for (const k of paths[b]) {
       const [pi, pj] = ends(k);
@@ -83,7 +96,9 @@ function drawSegments(ctx, net, t, count, ends, binOf, colorOf, widthOf) {
     ctx.strokeStyle = colorOf(b);
     ctx.lineWidth = widthOf(b);
     ctx.stroke();
+    drawn += paths[b].length;
   }
+  return true;
 }
 
 function drawBox(ctx, domain, t) {
@@ -101,8 +116,11 @@ function meanRadius(net) {
   return sum / net.particles.length;
 }
 
-// The network of one frame, its contacts coloured by force / mean force.
-export function drawNetwork(canvas, net, force) {
+// The network of one frame, its contacts coloured by force / mean force; null when it has no
+// positions or a newer drawing took the canvas.
+export async function drawNetwork(canvas, net, force) {
+  const token = (canvas.fnetDrawing = (canvas.fnetDrawing || 0) + 1);
+  if (!(await stillMine(canvas, token))) return null;  // the answer's parsing apart from the drawing
   const { ctx, w, h } = fitCanvas(canvas);
   if (!net.particles.length) {
     ctx.fillStyle = "#6b6b70";
@@ -112,21 +130,25 @@ export function drawNetwork(canvas, net, force) {
   const domain = domainOf(net);
   const t = transformFor(domain, w, h);
   drawGrains(ctx, net, t);
+  drawBox(ctx, domain, t);
   const f = normalized(net, force);
   const rpx = meanRadius(net) * t.s;
   const P = net.particles;
-  drawSegments(
-    ctx, net, t, net.contacts.length, (k) => [P[net.contacts[k][0]], P[net.contacts[k][1]]],
+  if (net.particles.length > SEGMENTS_PER_TASK && !(await stillMine(canvas, token))) return null;
+  const complete = await drawSegments(
+    canvas, token, ctx, t, net.contacts.length, (k) => [P[net.contacts[k][0]], P[net.contacts[k][1]]],
     (k) => (f[k] > 0 ? Math.min(BINS - 1, Math.floor((f[k] / FORCE_TOP) * BINS)) : -1),
     (b) => forceColor((b + 0.5) / BINS),
     (b) => Math.max(0.6, rpx * (0.15 + (0.75 * (b + 0.5)) / BINS)));
-  drawBox(ctx, domain, t);
-  return { transform: t, domain, top: FORCE_TOP };
+  return complete ? { transform: t, domain, top: FORCE_TOP } : null;
 }
 
 // The change from `before` to `after` (two frames of a run) drawn on `after`'s grains, with the
-// block table and the explained terms of the distance over it.
-export function drawChange(canvas, before, after, force, blocks, terms) {
+// block table and the explained terms of the distance over it; null when there are no positions
+// or a newer drawing took the canvas.
+export async function drawChange(canvas, before, after, force, blocks, terms) {
+  const token = (canvas.fnetDrawing = (canvas.fnetDrawing || 0) + 1);
+  if (!(await stillMine(canvas, token))) return null;
   const { ctx, w, h } = fitCanvas(canvas);
   if (!after.particles.length || !before.particles.length) {
     ctx.fillStyle = "#6b6b70";
@@ -136,7 +158,8 @@ export function drawChange(canvas, before, after, force, blocks, terms) {
   const domain = domainOf(after);
   const t = transformFor(domain, w, h);
 
-  // The block table as a heat map under the network: each cell of `after`'s grid.
+  drawGrains(ctx, after, t);
+  // The block table as a heat map over the grains, under the contacts: each cell of `after`'s grid.
   if (blocks) {
     const values = blocks.cells.map((c) => (c.infinite ? Infinity : c.value));
     const finite = values.filter((v) => isFinite(v));
@@ -144,14 +167,13 @@ export function drawChange(canvas, before, after, force, blocks, terms) {
     for (const c of blocks.cells) {
       const [xl, xh, yl, yh] = c.bounds[1];
       ctx.fillStyle = c.infinite ? "#7a0020" : heatColor(c.value / top);
-      ctx.globalAlpha = 0.45;
+      ctx.globalAlpha = 0.4;
       ctx.fillRect(t.x(xl), t.y(yh), (xh - xl) * t.s, (yh - yl) * t.s);
       ctx.globalAlpha = 1;
       ctx.strokeStyle = "#fff";
       ctx.strokeRect(t.x(xl), t.y(yh), (xh - xl) * t.s, (yh - yl) * t.s);
     }
   }
-  drawGrains(ctx, after, t);
 
   // Δ(f / mean f) per contact.
   const fa = normalized(after, force), fb = normalized(before, force);
@@ -168,18 +190,20 @@ export function drawChange(canvas, before, after, force, blocks, terms) {
     if (was.has(contactKey(c[0], c[1])) && fb[k] > 0) gone.push([c[0], c[1], -fb[k]]);
   });
   const changes = rows.concat(gone).filter((r) => r[2] !== 0);
-  const magnitudes = changes.map((r) => Math.abs(r[2])).sort((a, b) => a - b);
-  const clip = Math.max(0.25, magnitudes.length ? magnitudes[Math.floor(0.99 * (magnitudes.length - 1))] : 0);
+  const magnitudes = Float64Array.from(changes, (r) => Math.abs(r[2])).sort();
+  const clip = Math.max(0.25, magnitudes.length ? magnitudes[Math.floor(0.95 * (magnitudes.length - 1))] : 0);
   const P = after.particles;
   const rpx = meanRadius(after) * t.s;
   const half = BINS / 2;
-  drawSegments(
-    ctx, after, t, changes.length,
+  drawBox(ctx, domain, t);
+  if (after.particles.length > SEGMENTS_PER_TASK && !(await stillMine(canvas, token))) return null;
+  const complete = await drawSegments(
+    canvas, token, ctx, t, changes.length,
     (k) => [P[changes[k][0]] || before.particles[changes[k][0]], P[changes[k][1]] || before.particles[changes[k][1]]],
     (k) => Math.max(0, Math.min(BINS - 1, Math.floor(half + (changes[k][2] / clip) * half))),
     (b) => changeColor((b + 0.5) / BINS),
     (b) => Math.max(0.7, rpx * (0.15 + (0.8 * Math.abs(b + 0.5 - half)) / half)));
-  drawBox(ctx, domain, t);
+  if (!complete) return null;
 
   // The explained terms: a ring where each sits (the centre of the grains that create its
   // feature in the later frame, else in the earlier one), numbered by rank.

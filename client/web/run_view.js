@@ -13,6 +13,7 @@ const $ = (id) => document.getElementById(id);
 const STORED = ["bottleneck", "wasserstein1", "wasserstein2"];  // served from series.point as they come
 const METRIC_LABEL = { bottleneck: "d_B", wasserstein1: "d_W1", wasserstein2: "d_W2" };
 const BLOCKS_K = 4;
+const UNKNOWN_RUN = -32001;
 const EXPLAIN_TERMS = 5;
 
 export class RunView {
@@ -52,7 +53,10 @@ export class RunView {
     try {
       const last = this.points.length ? this.points[this.points.length - 1].frame : null;
       const answer = await this.rpc.call("series.subscribe", last === null ? { run } : { run, since: last });
-      if (this.run === run) this.subscription = answer.subscription;
+      if (this.run === run) {
+        this.subscription = answer.subscription;
+        this.subscribedAt = Date.now();
+      }
       else this.rpc.call("series.unsubscribe", { subscription: answer.subscription }).catch(() => {});
     } catch (e) {
       $("run-state").textContent = e.message;
@@ -78,6 +82,12 @@ export class RunView {
       s = await this.rpc.call("series.get", { run, ...m });
     } catch (e) {
       $("run-state").textContent = e.message;
+      // A run linked to before it starts: asked for again until it appears.
+      if (e.code === UNKNOWN_RUN && this.run === run) {
+        $("run-state").textContent = `waiting for run ${run} to appear on the server…`;
+        await new Promise((resolve) => setTimeout(resolve, 500));
+        if (this.run === run) return this.loadCurve();
+      }
       return;
     }
     if (this.run !== run || JSON.stringify(m) !== JSON.stringify(this.measure())) return;
@@ -94,7 +104,7 @@ export class RunView {
   onPoint(p) {
     if (p.run !== this.run) return;
     this.live.push(p);
-    if (this.live.length > 64) this.live.splice(0, this.live.length - 64);
+    if (this.live.length > 4096) this.live.splice(0, this.live.length - 4096);
     if (this.points.length && p.frame <= this.points[this.points.length - 1].frame) return;
     this.addPoint(p);
     this.draw();
@@ -184,7 +194,13 @@ export class RunView {
     });
     const now = Date.now();
     for (const p of this.points) if (!(p.frame in this.drawnAt)) this.drawnAt[p.frame] = now;
+  }
+
+  // After a change of the window's size: everything drawn again at the new size.
+  resize() {
+    this.redraw();
     if (this.latest.drawn) this.drawLatest();
+    if (this.change && this.change.drawn) this.drawChangeView();
   }
 
   // The newest frame's network and diagrams, fetched again when a newer frame has come.
@@ -195,6 +211,7 @@ export class RunView {
     if (newest === this.latest.frame && force === this.latest.force) return;
     this.latest.busy = true;
     const run = this.run;
+    const asked = performance.now();
     try {
       const [net, pd0, pd1] = await Promise.all([
         this.rpc.call("network.get", { run, frame: newest }),
@@ -205,7 +222,8 @@ export class RunView {
       this.latest.frame = newest;
       this.latest.force = force;
       this.latest.drawn = { net, pd0, pd1, force };
-      this.drawLatest();
+      this.latest.fetchMs = performance.now() - asked;
+      await this.drawLatest();
     } catch (e) {
       $("network-caption").textContent = `frame ${newest}: ${e.message}`;
       this.latest.frame = newest;
@@ -215,11 +233,13 @@ export class RunView {
     }
   }
 
-  drawLatest() {
+  async drawLatest() {
     const { net, pd0, pd1, force } = this.latest.drawn;
     const start = performance.now();
-    const drawn = drawNetwork($("network"), net, force);
+    const drawn = await drawNetwork($("network"), net, force);
+    if (!drawn && net.particles.length) return;  // a newer drawing took the canvas
     this.latest.drawMs = performance.now() - start;
+    this.latest.drawnAt = Date.now();
     $("network-caption").textContent = `latest frame ${net.frame}: ρ ${formatNumber(net.rho, 4)}, Z ${formatNumber(net.z, 3)}, ` +
       `${net.particles.length} grains, ${net.contacts.length} contacts; ${force} force / mean force` +
       (net.dimension === 3 ? " (xy projection of a 3D frame)" : "");
@@ -264,8 +284,11 @@ export class RunView {
         this.rpc.call("distance.get", { run, frame: previous, other_frame: frame, ...m, explain: EXPLAIN_TERMS }),
       ]);
       if (run !== this.run || this.selected !== frame) return;
-      const drawn = drawChange($("change-network"), before, after, m.force, blocks, distance.explain);
-      this.change = { frame, previous, blocks, distance, drawn };
+      this.changeNetworks = { before, after, force: m.force };
+      this.change = { frame, previous, blocks, distance, drawn: null };
+      const drawn = await this.drawChangeView();
+      const superseded = !drawn && before.particles.length > 0 && after.particles.length > 0;
+      if (!this.change || this.change.frame !== frame || superseded) return;
       const value = distance.infinite ? "∞" : formatNumber(distance.value, 4);
       $("change-title").textContent = `frame ${frame} (ρ ${formatNumber(point.rho, 4)}) against frame ${previous}: ` +
         `${METRIC_LABEL[m.metric]}(PD${m.dim}) = ${value}`;
@@ -277,12 +300,21 @@ export class RunView {
           `change in ${m.force} force / mean force (blue: weaker, red: stronger)`);
       const largest = blocks.largest;
       $("blocks-caption").textContent = `Block table (${BLOCKS_K} × ${BLOCKS_K}, shaded by ${METRIC_LABEL[m.metric]} cell by cell, ` +
-        `each cell normalized by its own mean force): largest in row ${largest.row}, column ${largest.col}, ` +
+        `each cell normalized by its own mean force; pale: 0, dark red: the largest): largest in row ${largest.row}, column ${largest.col}, ` +
         `${largest.value === null ? "∞" : formatNumber(largest.value, 4)}.`;
       this.renderTerms(distance.explain || []);
     } catch (e) {
       $("change-title").textContent = `frame ${frame} against frame ${previous}: ${e.message}`;
     }
+  }
+
+  // The selected change drawn (again): the networks kept apart from this.change, which tests read.
+  async drawChangeView() {
+    const { before, after, force } = this.changeNetworks;
+    const change = this.change;
+    const drawn = await drawChange($("change-network"), before, after, force, change.blocks, change.distance.explain);
+    if (drawn) change.drawn = drawn;
+    return drawn;
   }
 
   renderTerms(terms) {

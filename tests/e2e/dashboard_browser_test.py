@@ -9,15 +9,14 @@ ensemble.series. Screenshots are written to WORK_DIR/screenshots.
 usage: dashboard_browser_test.py SOURCE_DIR BUILD_DIR WORK_DIR
 """
 
-import json
 import os
 import shutil
 import sys
-import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from dashboard_fixture import Api, Server, browser, close_browser, console_errors, wait_until  # noqa: E402
+from dashboard_fixture import (Api, CommitWatch, Server, browser, close_browser, console_errors,  # noqa: E402
+                               latencies, wait_until)
 
 DOMAIN = 89
 LIVE = ["--particles", "400", "--frames", "40", "--compression-speed", "1e-4", "--rho-final", "0.86",
@@ -77,21 +76,9 @@ def main():
         print("ok: the page loads and opens its WebSocket:", server.url)
 
         # Every frame's commit as a subscriber on TCP sees it, timed, while the run goes on.
-        watcher = Api(server.port)
-        watcher.call("series.subscribe", {})
-        stop = threading.Event()
-
-        def watch():
-            while not stop.is_set():
-                try:
-                    watcher.read()
-                except (OSError, ValueError):
-                    return
-
-        threading.Thread(target=watch, daemon=True).start()
+        watch = CommitWatch(server.port)
         simd = server.simd(LIVE, os.path.join(work, "live.log"))
         wait_until(lambda: js(driver, "fnetDashboard.curve().length") >= 2, 300, "the run's first frames on the page")
-        first_drawn = time.time()
         wait_until(lambda: js(driver, "fnetDashboard.curve().length") >= 30 or simd.poll() is not None, 300,
                    "30 frames on the page")
         driver.save_screenshot(os.path.join(shots, "live-run-midway.png"))
@@ -100,14 +87,11 @@ def main():
         wait_until(lambda: js(driver, "fnetDashboard.curve().length") == summary["frames"], 10, "every frame on the page")
         wait_until(lambda: js(driver, "fnetDashboard.runView.latest.frame") == summary["last_frame"], 10,
                    "the latest frame's network")
-        stop.set()
+        watch.stop()
 
         # Latency: the page drew each frame within a second of the server's notification.
-        drawn = js(driver, "fnetDashboard.runView.drawnAt")
-        committed = {m["params"]["frame"]: t for t, m in watcher.notifications
-                     if m.get("method") == "series.point" and m["params"]["run"] == "live"}
-        live = {f: drawn[str(f)] / 1000 - t for f, t in committed.items() if t > first_drawn + 0.5}
-        assert len(live) >= 5, f"only {len(live)} frames came after the page showed the run"
+        live = latencies(driver, watch.times("live"))
+        assert len(live) >= 5, f"only {len(live)} frames came after the page subscribed to the run"
         worst = max(live.values())
         assert worst < 1.0, f"a frame took {worst:.3f} s from its commit to the curve: {live}"
         print(f"ok: {len(live)} live frames each on the curve within {worst * 1000:.0f} ms of its commit "

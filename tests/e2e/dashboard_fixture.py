@@ -8,6 +8,7 @@ import shutil
 import socket
 import subprocess
 import tempfile
+import threading
 import time
 
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -93,6 +94,40 @@ class Api:
         raise RuntimeError(f"run {run} did not reach {frames} frames")
 
 
+class CommitWatch:
+    """A series.subscribe subscription of every run on a connection of its own, read by a thread:
+    when each frame's commit was notified."""
+
+    def __init__(self, port):
+        self.api = Api(port)
+        self.api.call("series.subscribe", {})
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self):
+        while True:
+            try:
+                self.api.read()
+            except (OSError, ValueError):
+                return
+
+    def stop(self):
+        self.api.sock.close()
+
+    def times(self, run):
+        """frame -> time.time() when its series.point notification was read."""
+        return {m["params"]["frame"]: t for t, m in list(self.api.notifications)
+                if m.get("method") == "series.point" and m["params"]["run"] == run}
+
+
+def latencies(driver, times):
+    """Seconds from each frame's notification (`times`) to the page's drawing of its point, for the
+    frames committed once the page had subscribed (those before came with series.get)."""
+    drawn = driver.execute_script("return fnetDashboard.runView.drawnAt")
+    subscribed = driver.execute_script("return fnetDashboard.runView.subscribedAt") / 1000
+    return {f: drawn[str(f)] / 1000 - t for f, t in times.items() if str(f) in drawn and t > subscribed}
+
+
 def browser(width=1400, height=1000):
     """Headless Chromium with a fresh profile, its console kept (goog:loggingPrefs)."""
     from selenium import webdriver
@@ -101,7 +136,8 @@ def browser(width=1400, height=1000):
     options = webdriver.ChromeOptions()
     options.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
     profile = tempfile.mkdtemp(prefix="fnet-chromium-")
-    for flag in CHROMIUM_FLAGS + [f"--user-data-dir={profile}", f"--window-size={width},{height}"]:
+    extra = os.environ.get("FNET_CHROMIUM_EXTRA", "").split()  # a benchmark's flags (heap figures)
+    for flag in CHROMIUM_FLAGS + extra + [f"--user-data-dir={profile}", f"--window-size={width},{height}"]:
         options.add_argument(flag)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
     driver = webdriver.Chrome(service=DriverService(shutil.which("chromedriver") or "/usr/bin/chromedriver"),

@@ -4,7 +4,6 @@ series are served there meanwhile (DDS domain 48, ports picked free).
 usage: demo_dashboard_test.py SOURCE_DIR BUILD_DIR WORK_DIR
 """
 
-import json
 import os
 import shutil
 import socket
