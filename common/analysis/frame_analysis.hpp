@@ -20,8 +20,8 @@ struct FrameDiagramSet {
   const FrameDiagrams& operator[](ForceKind kind) const { return kind == ForceKind::normal ? normal : tangential; }
 };
 
-// The frame must have passed validate().
-FrameDiagramSet analyze_frame(const Frame& frame);
+// The frame must have passed validate(). threads > 1: the two networks at once.
+FrameDiagramSet analyze_frame(const Frame& frame, int threads = 1);
 
 const Diagram& diagram_of(const FrameDiagramSet& set, ForceKind force, int dim);
 
@@ -34,16 +34,22 @@ DistanceResult diagram_distance(const Diagram& a, const Diagram& b, Metric metri
 DistanceResult diagram_distance(const Diagram& a, const Diagram& b, DistanceMetric metric,
                                 EssentialConvention essential = EssentialConvention::floor, double delta = 0);
 
-// The twelve exact distances between consecutive frames, indexed by step_index().
+// The twelve distances between consecutive frames (exact unless a relative error is accepted),
+// indexed by step_index().
 struct StepDistances {
   std::array<double, kStoredSeries.size()> value{};
+  std::array<double, kStoredSeries.size()> seconds{};  // CPU time of the thread that computed each
   double operator()(Metric metric, int dim, ForceKind force) const { return value[index(metric, dim, force)]; }
   static constexpr std::size_t index(Metric metric, int dim, ForceKind force) {
     return stored_series_index(metric, dim, force);
   }
 };
 
+// threads > 1: the distances shared among that many threads, the costliest first (Wasserstein
+// before bottleneck, larger diagrams first); every value is the same as on one thread, bit for bit.
+// delta > 0: each distance within that relative error (diagram_distance), the value an upper bound.
 StepDistances step_distances(const FrameDiagramSet& previous, const FrameDiagramSet& current,
-                             EssentialConvention essential = EssentialConvention::floor);
+                             EssentialConvention essential = EssentialConvention::floor, int threads = 1,
+                             double delta = 0);
 
 }  // namespace fnet

@@ -9,14 +9,16 @@ DiagramOutcome DiagramJob::run() const {
   DiagramOutcome out{index, std::nullopt, {}};
   try {
     validate(*frame);
-    out.diagrams = analyze_frame(*frame);
+    out.diagrams = analyze_frame(*frame, threads);
   } catch (const std::exception& e) {
     out.reason = e.what();
   }
   return out;
 }
 
-DistanceOutcome DistanceJob::run() const { return {index, step_distances(*previous, *current, essential)}; }
+DistanceOutcome DistanceJob::run() const {
+  return {index, step_distances(*previous, *current, essential, threads, delta)};
+}
 
 RunPipeline::RunPipeline(std::chrono::milliseconds gap_timeout, EssentialConvention essential)
     : gap_timeout_(gap_timeout), essential_(essential) {}

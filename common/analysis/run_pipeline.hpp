@@ -42,6 +42,7 @@ struct DiagramOutcome {
 struct DiagramJob {
   std::uint32_t index = 0;
   std::shared_ptr<const Frame> frame;
+  int threads = 1;  // > 1: the two networks at once (analyze_frame)
   DiagramOutcome run() const;
 };
 
@@ -56,6 +57,8 @@ struct DistanceJob {
   std::uint32_t index = 0;
   std::shared_ptr<const FrameDiagramSet> previous, current;
   EssentialConvention essential = EssentialConvention::floor;
+  int threads = 1;   // > 1: the twelve distances shared among that many threads (step_distances)
+  double delta = 0;  // > 0: each distance within that relative error instead of exact
   DistanceOutcome run() const;
 };
 

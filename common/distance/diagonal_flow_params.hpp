@@ -47,7 +47,8 @@ struct DiagonalFlowParams {
   // complete-graph searches finish.
   std::size_t max_rounds = 24;
   // ... as they do once this few violating rows or fewer are left: a round costs a check of every
-  // pair, more than complete-graph searches for a couple of rows.
+  // pair, more than complete-graph searches for a couple of rows. The line start repairs its
+  // last rows likewise once its lowering stalls on this few.
   std::size_t few_rows = 2;
 
   // An approximate solve (accept ratio > 1) compares its bounds every 1 + (n + m) / check_spacing

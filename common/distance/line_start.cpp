@@ -91,14 +91,34 @@ bool lower_potentials(FlowState& flow, const CandidateArcs& candidates, std::spa
   return true;
 }
 
-// Checks every pair; while arcs are violated, adds them to the candidates and lowers again.
+// Rows with a violated arc in the last check.
+std::size_t violating_rows(const DualCertificate& certificate) {
+  const auto v = certificate.violations();
+  return static_cast<std::size_t>(
+      std::count_if(v.begin(), v.end(), [](const DualCertificate::Violation& x) { return x.amount > 0; }));
+}
+
+// Checks every pair; while arcs are violated, adds them to the candidates and lowers again. When
+// the lowering has stalled on a few rows (no fewer violated arcs than the round before, at most
+// params.few_rows rows: sweeps that ignore improvements within rounding can leave such a row
+// violated round after round), those rows are repaired instead (their potentials raised to
+// feasible, the rows and their partners freed for the searches): every pair arc is then feasible,
+// as after a certified round. false: no certificate within params.line_rounds rounds, or a
+// negative cycle.
 bool lower_until_certified(FlowState& flow, PairOracle& oracle, CandidateArcs& candidates, DualCertificate& certificate,
-                           std::span<const std::uint32_t> order, const DiagonalFlowParams& params) {
+                           std::span<const std::uint32_t> order, const DiagonalFlowParams& params, HubArcs& hubs) {
+  std::size_t before = 0;
   for (std::size_t round = 0;; ++round) {
     oracle.recompute_all();
     certificate.check_pairs(flow, oracle, params.line_top_arcs);
-    if (certificate.violations().empty()) return true;
+    const std::size_t violated = certificate.violations().size();
+    if (violated == 0) return true;
+    if (round > 0 && violated >= before && violating_rows(certificate) <= params.few_rows) {
+      certificate.repair(flow, hubs);
+      return true;
+    }
     if (round == params.line_rounds) return false;
+    before = violated;
     candidates.add(certificate.violated_arcs());
     certificate.clear_violations();
     if (!lower_potentials(flow, candidates, order, params)) return false;
@@ -131,7 +151,7 @@ bool line_start(const LineAlignment& alignment, const DiagonalFlowParams& params
   // certify it.
   const std::vector<std::uint32_t> order = sweep_order(flow);
   if (lower_potentials(flow, candidates, order, params) &&
-      lower_until_certified(flow, oracle, candidates, certificate, order, params)) {
+      lower_until_certified(flow, oracle, candidates, certificate, order, params, hubs)) {
     hubs.refresh_points(flow);
     return true;
   }

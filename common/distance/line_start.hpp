@@ -16,9 +16,11 @@ namespace fnet {
 // From the empty flow: takes the alignment's pairs (a pair that costs more than sending both to
 // the diagonal sends both there) and finds potentials by label-correcting sweeps on the candidate
 // graph, checked over every pair; violated arcs join the candidates and the potentials come down
-// along them. true: the flow and its potentials are in place, feasible on every pair arc, hub
-// streams refreshed. false (the flow empty again, its potentials zero, no pair arc violated): a negative cycle (a band
-// that cut the programme's optimum off) or no certificate within params.line_rounds rounds.
+// along them, until no arc is violated, or until the lowering stalls on a few rows, which are then
+// repaired (their potentials raised, the rows freed for the searches). true: the flow and its
+// potentials are in place, feasible on every pair arc, hub streams refreshed. false (the flow
+// empty again, its potentials zero, no pair arc violated): a negative cycle (a band that cut the
+// programme's optimum off) or no certificate within params.line_rounds rounds.
 bool line_start(const LineAlignment& alignment, const DiagonalFlowParams& params, FlowState& flow, HubArcs& hubs,
                 PairOracle& oracle, CandidateArcs& candidates, DualCertificate& certificate);
 

@@ -6,7 +6,7 @@
 # domain 82. The server must receive every frame of the publication and of the four realizations,
 # each announced in the one ensemble. Exit 77 (skipped) where network namespaces cannot be created.
 set -euo pipefail
-src=$1 server=$2 analyze=$3 fnetctl=$4 simd=$5
+src=$1 server=$2 analyze=$3 fnetctl=$4 simd=$5 python=$6  # python: the one with numpy and h5py
 tag=fn$$
 a=${tag}a b=${tag}b c=${tag}c
 ip netns add "$a" 2>/dev/null || { echo "cannot create network namespaces: skipped"; exit 77; }
@@ -92,7 +92,7 @@ echo "ok: ensemble mh, seeds 1-2 from namespace $b and 3-4 from namespace $c, an
 
 # A LAMMPS run on host b under MPI, followed as it runs: proto/lammps.md's cluster recipe, its
 # mpi follow block run as written there on the node that sees the dumps.
-python3 "$src/tests/e2e/lammps_follow_test.py" input --source-dir "$src" --build-dir . --workdir "$work/lmp" --domain 82
+"$python" "$src/tests/e2e/lammps_follow_test.py" input --source-dir "$src" --build-dir . --workdir "$work/lmp" --domain 82
 root=(); [ "$(id -u)" = 0 ] && root=(--allow-run-as-root --oversubscribe)
 block=$(python3 - "$src/proto/lammps.md" <<'PY'
 import re, sys

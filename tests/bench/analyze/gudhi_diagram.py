@@ -3,9 +3,9 @@
 usage: gudhi_diagram.py CONTACTS.csv PARTICLES.csv OUT.json
 
 Reads the two CSVs (numpy.loadtxt, columns found by the header) and writes the diagram document
-of the normal forces that tests/support/gudhi_flag.py computes with GUDHI (the flag complex of the
-contact graph in a SimplexTree, insert_batch for vertices and edges, expansion(2), persistence over
-Z/2).
+of the normal forces (diagram_document with column "ft": the tangential network) that
+tests/support/gudhi_flag.py computes with GUDHI (the flag complex of the contact graph in a
+SimplexTree, insert_batch for vertices and edges, expansion(2), persistence over Z/2).
 """
 import json
 import os
@@ -23,12 +23,16 @@ def columns(path, names):
     return np.loadtxt(path, delimiter=",", skiprows=1, usecols=[header.index(n) for n in names], ndmin=2)
 
 
-def main(contacts_csv, particles_csv, out_json):
-    contacts = columns(contacts_csv, ["i", "j", "fn"])
+def diagram_document(contacts_csv, particles_csv, column="fn"):
+    """The diagram document of the network of one force column, as fnet-analyze diagram writes it."""
+    contacts = columns(contacts_csv, ["i", "j", column])
     n = len(columns(particles_csv, ["id"]))
-    document = flag_diagrams(n, contacts[:, 0], contacts[:, 1], contacts[:, 2])
+    return flag_diagrams(n, contacts[:, 0], contacts[:, 1], contacts[:, 2])
+
+
+def main(contacts_csv, particles_csv, out_json):
     with open(out_json, "w") as f:
-        json.dump(document, f, separators=(",", ":"))
+        json.dump(diagram_document(contacts_csv, particles_csv), f, separators=(",", ":"))
 
 
 if __name__ == "__main__":

@@ -68,19 +68,35 @@ def pot_wasserstein(a, b, q):
     return float(ot.emd2(wa, wb, c, numItermax=100_000_000)) ** (1 / q)
 
 
+def swapped(points):
+    """(birth, death) rows as (death, birth): GUDHI and Hera ignore points below the diagonal."""
+    return np.ascontiguousarray(points[:, ::-1])
+
+
+def hera(a, b, q, delta=0.01):
+    """Hera's distance between two finite diagrams at relative error delta (q None: bottleneck)."""
+    import gudhi.hera
+    if q is None:
+        return gudhi.hera.bottleneck_distance(swapped(a), swapped(b), delta=delta)
+    return gudhi.hera.wasserstein_distance(swapped(a), swapped(b), order=q, internal_p=np.inf, delta=delta)
+
+
+def gudhi_bottleneck(a, b):
+    """GUDHI's exact bottleneck distance between two finite diagrams."""
+    import gudhi
+    return gudhi.bottleneck_distance(swapped(a), swapped(b), 0)
+
+
 def anchors(a, b, q):
     """(hera value, hera s, POT value, POT s, gudhi value, gudhi s) for q (None: bottleneck)."""
-    import gudhi
-    import gudhi.hera
-    sa, sb = np.ascontiguousarray(a[:, ::-1]), np.ascontiguousarray(b[:, ::-1])
     nan = float("nan")
     if q is None:
-        hv, ht = timed(lambda: gudhi.hera.bottleneck_distance(sa, sb, delta=0.01))
+        hv, ht = timed(lambda: hera(a, b, None))
         gv, gt = nan, nan
         if max(len(a), len(b)) <= POT_MAX_POINTS:  # 30 s at 5 000 points
-            gv, gt = timed(lambda: gudhi.bottleneck_distance(sa, sb, 0))
+            gv, gt = timed(lambda: gudhi_bottleneck(a, b))
         return hv, ht, nan, nan, gv, gt
-    hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(sa, sb, order=q, internal_p=np.inf, delta=0.01))
+    hv, ht = timed(lambda: hera(a, b, q))
     pv, pt = nan, nan
     if max(len(a), len(b)) <= POT_MAX_POINTS:
         pv, pt = timed(lambda: pot_wasserstein(a, b, q))
@@ -236,12 +252,10 @@ APPROX_DELTAS_LAMMPS = (0.2, 0.1, 0.05, 0.01)
 def approximate_mode(exe, pairs):
     """delta, time, the certified bound reached and the true error against the exact value, fnet
     and Hera at the same delta: pairs is a list of (label, A.json, B.json, a, b, deltas), pd1."""
-    import gudhi.hera
     print("\n== Approximate mode (pd1): certified bounds against the exact value ==")
     print(f"{'pair':<36}{'metric':<8}{'delta':>8}{'fnet ms':>10}{'hera ms':>10}{'value':>16}{'lower':>16}"
           f"{'true rel err':>14}{'bound (u-l)/l':>15}{'hera rel err':>14}")
     for label, fa, fb, a, b, deltas in pairs:
-        sa, sb = np.ascontiguousarray(a[:, ::-1]), np.ascontiguousarray(b[:, ::-1])
         for metric, q in (("W1", 1), ("W2", 2)):
             cli = {"W1": "wasserstein1", "W2": "wasserstein2"}[metric]
             exact, et, _, _ = fnet(exe, fa, fb, 1, cli, timeout=APPROX_TIMEOUT)
@@ -249,8 +263,7 @@ def approximate_mode(exe, pairs):
                   f"{0:>14.2e}{0:>15.2e}{float('nan'):>14.2e}", flush=True)
             for delta in deltas:
                 v, t, lo, up = fnet(exe, fa, fb, 1, cli, delta, timeout=APPROX_TIMEOUT)
-                hv, ht = timed(lambda: gudhi.hera.wasserstein_distance(sa, sb, order=q, internal_p=np.inf,
-                                                                       delta=delta))
+                hv, ht = timed(lambda: hera(a, b, q, delta))
                 print(f"{label:<36}{metric:<8}{delta:>8g}{t*1e3:>10.1f}{ht*1e3:>10.1f}{v:>16.10g}{lo:>16.10g}"
                       f"{v / exact - 1:>14.2e}{(up - lo) / lo if lo else 0:>15.2e}{hv / exact - 1:>14.2e}", flush=True)
 

@@ -64,6 +64,12 @@ std::vector<SyntheticCase> synthetic_cases() {
     cases.push_back({"N2000_nonplanar_seed" + std::to_string(seed),
                      {.particles = 2000, .seed = seed, .interstitial_fraction = 0.08}});
   cases.push_back({"N20000_seed7", {.particles = 20000, .seed = 7}});
+  // Disordered packings, and spheres: tetrahedra and hollow polyhedra (2-cycles) are common in 3D.
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    cases.push_back({"disordered2d_N2000_seed" + std::to_string(seed), disordered_packing(2, 2000, seed)});
+    cases.push_back({"disordered3d_N2000_seed" + std::to_string(seed), disordered_packing(3, 2000, seed)});
+    cases.push_back({"fcc3d_N2000_seed" + std::to_string(seed), {.particles = 2000, .seed = seed, .dimension = 3}});
+  }
   return cases;
 }
 
@@ -75,6 +81,15 @@ TEST_P(SyntheticOracle, SameDiagramsAsGudhi) {
 }
 
 std::string kind_name(ForceKind kind) { return std::string(to_string(kind)); }
+
+// The frame after a packing (contacts opened, closed, forces moved): what the distance
+// benchmarks measure from.
+TEST(SyntheticOracle, TheNextFrameOfAPackingHasTheSameDiagramsAsGudhi) {
+  for (const int dimension : {2, 3}) {
+    const Frame next = next_frame(synthetic_frame(disordered_packing(dimension, 2000, 3)), {.seed = 3});
+    for (const ForceKind kind : {ForceKind::normal, ForceKind::tangential}) expect_same_as_gudhi(next, kind);
+  }
+}
 
 INSTANTIATE_TEST_SUITE_P(Frames, SyntheticOracle,
                          ::testing::Combine(::testing::ValuesIn(synthetic_cases()),
