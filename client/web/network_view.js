@@ -160,11 +160,18 @@ export async function drawChange(canvas, before, after, force, blocks, terms) {
 
   drawGrains(ctx, after, t);
   // The block table as a heat map over the grains, under the contacts: each cell of `after`'s grid.
+  // A 3D grid is drawn as its projection: each (row, col) column of cells shaded by its largest.
   if (blocks) {
-    const values = blocks.cells.map((c) => (c.infinite ? Infinity : c.value));
-    const finite = values.filter((v) => isFinite(v));
-    const top = Math.max(...finite, 1e-12);
+    const columns = new Map();
     for (const c of blocks.cells) {
+      const key = `${c.row},${c.col}`, held = columns.get(key);
+      const larger = !held || (c.infinite && !held.infinite) || (!held.infinite && c.value > held.value);
+      if (larger) columns.set(key, c);
+    }
+    const cells = [...columns.values()];
+    const finite = cells.filter((c) => !c.infinite).map((c) => c.value);
+    const top = Math.max(...finite, 1e-12);
+    for (const c of cells) {
       const [xl, xh, yl, yh] = c.bounds[1];
       ctx.fillStyle = c.infinite ? "#7a0020" : heatColor(c.value / top);
       ctx.globalAlpha = 0.4;

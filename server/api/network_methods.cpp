@@ -19,7 +19,11 @@ json network_get(const Registry& registry, const json& params) {
   json contacts = json::array();
   for (const Contact& c : f.contacts) contacts.push_back(json::array({c.i, c.j, c.fn, c.ft}));
   json domain = nullptr;
-  if (a.domain) domain = json::array({a.domain->x_lo, a.domain->x_hi, a.domain->y_lo, a.domain->y_hi});
+  if (a.domain) {
+    const BlockDomain& d = *a.domain;
+    domain = f.dimension == 3 ? json::array({d.x_lo, d.x_hi, d.y_lo, d.y_hi, d.z_lo, d.z_hi})
+                              : json::array({d.x_lo, d.x_hi, d.y_lo, d.y_hi});
+  }
   return {{"run", r.run},
           {"frame", r.frame},
           {"rho", a.header.rho},
