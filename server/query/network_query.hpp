@@ -22,7 +22,7 @@ struct NetworkAnswer {
   FrameHeader header;
   Frame network;
   double mean_normal = 0, mean_tangential = 0;  // over the contacts whose force of that kind is > 0
-    std::optional<BlockDomain> domain;           // the grains' bounding box (blocks.hpp); none without positions
+  std::optional<BlockDomain> domain;            // the grains' bounding box (blocks.hpp); none without positions
 };
 
 // UnknownFrame when the frame is not committed; NoNetwork when its network is not stored.
