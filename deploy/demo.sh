@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The main job on a small default, after `deploy/build.sh`: fnet-server and fnet-simd on loopback,
-# a compression of a few hundred disks watched live with fnetctl, then its W2 series.
+# a compression of a few hundred disks watched live with fnetctl and in a browser (the dashboard's
+# address is printed), then its W2 series.
 # Override with environment variables: PARTICLES (400 disks), SPEED (v_c, 5e-4 d/tau_c), FRAMES (60),
-# PORT (7707, the JSON API's), DOMAIN_ID (0: the DDS domain fnet-simd publishes on and fnet-server
-# reads; another value keeps two demos on one machine apart), DATA_DIR (build/demo-data: the
-# server's stores) and BIN_DIR (build: where the programs were built).
+# PORT (7707, the JSON API's), HTTP_PORT (7708, the dashboard's), DOMAIN_ID (0: the DDS domain
+# fnet-simd publishes on and fnet-server reads; another value keeps two demos on one machine apart),
+# DATA_DIR (build/demo-data: the server's stores) and BIN_DIR (build: where the programs were built).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BIN_DIR:-build}
@@ -12,6 +13,7 @@ particles=${PARTICLES:-400}
 speed=${SPEED:-5e-4}
 frames=${FRAMES:-60}
 port=${PORT:-7707}
+http_port=${HTTP_PORT:-7708}
 domain=${DOMAIN_ID:-0}
 data=${DATA_DIR:-build/demo-data}
 export CYCLONEDDS_URI="file://$PWD/deploy/cyclonedds-loopback.xml"
@@ -30,7 +32,8 @@ fail() {
 
 # Talk to the port only once our own server said it listens there: if the port is taken, another
 # process (perhaps another fnet-server with other data) would answer and the demo would lie.
-"$build/bin/fnet-server" --data-dir "$data" --port "$port" --domain "$domain" > "$data/server.log" 2>&1 &
+"$build/bin/fnet-server" --data-dir "$data" --port "$port" --http-port "$http_port" --domain "$domain" \
+  > "$data/server.log" 2>&1 &
 server_pid=$!
 pids+=("$server_pid")
 for _ in $(seq 300); do
@@ -40,9 +43,11 @@ for _ in $(seq 300); do
 done
 if ! grep -q "listening on 127.0.0.1:$port " "$data/server.log" 2>/dev/null || ! kill -0 "$server_pid" 2>/dev/null; then
   sed 's/^/  /' "$data/server.log" >&2
-  fail "fnet-server did not start on 127.0.0.1:$port (log above, in $data/server.log); set PORT to a free port"
+  fail "fnet-server did not start on 127.0.0.1:$port (dashboard :$http_port; log above, in $data/server.log); set PORT and HTTP_PORT to free ports"
 fi
 echo "fnet-server: $(grep listening "$data/server.log")"
+for _ in $(seq 50); do grep -q "dashboard on" "$data/server.log" && break; sleep 0.1; done
+echo "dashboard: $(sed -n 's/.*dashboard on //p' "$data/server.log") (open it in a browser to watch the run)"
 
 # The box is sized so that the disks start at rho 0.63 (fnet-simd's --rho-initial), as the paper's.
 echo "fnet-simd: $particles disks, wall speed $speed d/tau_c, $frames frames, run $run_id"

@@ -18,6 +18,8 @@ packages=(
   lammps
   # process tools used by end-to-end tests
   procps iproute2 netcat-openbsd
+  # the dashboard's tests in a real browser (tests/e2e/dashboard_browser_test.py)
+  chromium chromium-driver python3-selenium
 )
 
 sudo_cmd=()

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
@@ -29,12 +30,24 @@ auto named(const std::string& flag, Parse parse) {
   }
 }
 
+// The first line of a token file, without its line end.
+std::string read_token(const std::string& path) {
+  std::ifstream in(path);
+  std::string token;
+  if (!in || !std::getline(in, token)) throw po::error("--token-file: cannot read '" + path + "'");
+  if (!token.empty() && token.back() == '\r') token.pop_back();
+  if (token.empty()) throw po::error("--token-file: '" + path + "' holds no token on its first line");
+  return token;
+}
+
 }  // namespace
 
-Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port) {
+Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port,
+                       const char* env_token) {
   Endpoint at;
   if (env_host && *env_host) at.host = env_host;
   if (env_port && *env_port) at.port = parse_port(env_port, "FNET_PORT");
+  if (env_token && *env_token) at.token = env_token;
   std::vector<std::string> rest;
   for (std::size_t k = 0; k < args.size(); ++k) {
     // The value of `flag` when args[k] is "flag VALUE" or "flag=VALUE".
@@ -51,6 +64,8 @@ Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, con
       at.host = *host;
     } else if (const auto port = value_of("--port")) {
       at.port = parse_port(*port, "--port");
+    } else if (const auto file = value_of("--token-file")) {
+      at.token = read_token(*file);
     } else {
       rest.push_back(args[k]);
     }

@@ -23,12 +23,15 @@ enum Exit : int { kOk = 0, kFailure = 1, kUsage = 2, kUnreachable = 3, kUnknown 
 struct Endpoint {
   std::string host = "127.0.0.1";
   unsigned short port = 7707;
+  std::string token;  // presented first when not empty (a server given --token-file asks for it)
 };
 
-// The server's address: FNET_HOST / FNET_PORT from the environment, overridden by --host and
-// --port (also --host=H, --port=P) wherever they stand on the command line; those are removed
-// from `args`. Throws boost::program_options::error naming the flag or variable.
-Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port);
+// The server's address and token: FNET_HOST / FNET_PORT / FNET_TOKEN from the environment,
+// overridden by --host, --port and --token-file (also --host=H, ...) wherever they stand on the
+// command line; those are removed from `args`. Throws boost::program_options::error naming the
+// flag or variable (a token file that cannot be read, too).
+Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port,
+                       const char* env_token = nullptr);
 
 // Parses a command's options; false after printing --help. `vm`, when given, receives the values.
 bool parse_command(const boost::program_options::options_description& options, const std::vector<std::string>& args,

@@ -57,7 +57,8 @@ constexpr const char* kUsageText =
     "             [--q Q] [--run R] [--other-run R2] [--dim D] [--force F] [--essential E] [--format table|json]\n"
     "\n"
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
-    "  --port P (default $FNET_PORT, else 7707); --version prints fnetctl's version and commit\n"
+    "  --port P (default $FNET_PORT, else 7707), --token-file F (the token a server given --token-file\n"
+    "  asks for; default $FNET_TOKEN, the token itself); --version prints fnetctl's version and commit\n"
     "exit codes: 0 ok, 1 a failure of fnetctl itself (an answer it cannot read, output it cannot\n"
     "            write), 2 bad usage or parameter, 3 server unreachable, 4 unknown run, frame or\n"
     "            ensemble, 5 other server error\n"
@@ -68,7 +69,7 @@ class Connection {
  public:
   explicit Connection(Endpoint at) : at_(std::move(at)) {}
   RpcClient& operator()() {
-    if (!client_) client_ = std::make_unique<RpcClient>(at_.host, at_.port);
+    if (!client_) client_ = std::make_unique<RpcClient>(at_.host, at_.port, std::chrono::seconds(30), at_.token);
     return *client_;
   }
 
@@ -411,7 +412,7 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
 int run(std::vector<std::string> args) {
   Endpoint at;
   try {
-    at = take_endpoint(args, std::getenv("FNET_HOST"), std::getenv("FNET_PORT"));
+    at = take_endpoint(args, std::getenv("FNET_HOST"), std::getenv("FNET_PORT"), std::getenv("FNET_TOKEN"));
   } catch (const po::error& e) {
     std::cerr << "fnetctl: " << e.what() << "\n";
     return kUsage;

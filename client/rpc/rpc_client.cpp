@@ -6,7 +6,8 @@ namespace fnet::client {
 namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
-RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout)
+RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout,
+                     const std::string& token)
     : socket_(io_), timeout_(timeout) {
   boost::system::error_code ec;
   tcp::resolver resolver(io_);
@@ -16,6 +17,7 @@ RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::
   if (ec)
     throw ConnectionError("cannot connect to fnet-server at " + host + ":" + std::to_string(port) + ": " +
                           ec.message());
+  if (!token.empty()) call("auth", {{"token", token}});
 }
 
 std::optional<json> RpcClient::read_message(std::chrono::milliseconds timeout) {

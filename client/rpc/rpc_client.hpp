@@ -36,7 +36,10 @@ class CallError : public std::runtime_error {
 
 class RpcClient {
  public:
-  RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout = std::chrono::seconds(30));
+  // With a `token`, the connection presents it first (the auth request of proto/api.md, "Access"):
+  // a server that asks for one runs no method before it; a wrong one is a CallError (-32007).
+  RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout = std::chrono::seconds(30),
+            const std::string& token = "");
 
   // Sends a request and returns its result; notifications that arrive first are kept for next_notification().
   json call(const std::string& method, const json& params = json::object());

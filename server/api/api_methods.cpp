@@ -21,6 +21,7 @@
 #include "server/api/block_methods.hpp"
 #include "server/api/connection_subscriptions.hpp"
 #include "server/api/ensemble_methods.hpp"
+#include "server/api/network_methods.hpp"
 #include "server/api/registry_frames.hpp"
 #include "server/api/series_methods.hpp"
 #include "server/api/served_query.hpp"
@@ -263,7 +264,8 @@ json checked_params(const std::string& method, const Method& m, const json& para
 MethodTable method_table(ApiContext& ctx) {
   Registry& registry = ctx.registry;
   const auto subscriptions = std::make_shared<Subscriptions>(ctx);
-  // distance.get and blocks.get compute (and may read two networks back from the store): heavy.
+  // distance.get and blocks.get compute (and may read two networks back from the store), network.get
+  // reads one: heavy.
   const auto plain = [](auto fn) {
     return [fn](const json& params, const std::shared_ptr<rpc::Peer>&) { return fn(params); };
   };
@@ -276,6 +278,8 @@ MethodTable method_table(ApiContext& ctx) {
       {"distance.get",
        {{"frame", "other_frame", "metric", "q", "run", "other_run", "dim", "force", "essential", "delta", "explain"},
         heavy(plain([&registry](const json& p) { return distance_get(registry, p); }))}},
+      {"network.get",
+       {{"frame", "run"}, heavy(plain([&registry](const json& p) { return network_get(registry, p); }))}},
       {"blocks.get",
        {{"run", "frame", "other_frame", "k", "metric", "q", "dim", "force", "essential"},
         heavy(plain([&registry](const json& p) { return blocks_get(registry, p); }))}},

@@ -1,6 +1,9 @@
 // fnet-server: subscribes to the frames of every run on DDS, analyzes them as they arrive, keeps
-// one store per run under --data-dir and answers JSON-RPC on 127.0.0.1 (proto/api.md).
+// one store per run under --data-dir and answers JSON-RPC on 127.0.0.1 (proto/api.md); with
+// --http-port, the dashboard too (server/web).
 #include <iostream>
+#include <optional>
+#include <string>
 #include <thread>
 
 #include <boost/asio/post.hpp>
@@ -11,6 +14,7 @@
 #include "server/registry/ingest.hpp"
 #include "server/registry/run_registry.hpp"
 #include "server/rpc/rpc_server.hpp"
+#include "server/web/http_server.hpp"
 
 namespace {
 
@@ -30,6 +34,12 @@ fnet::rpc::ServerLimits rpc_limits(const ServerOptions& o) {
   return limits;
 }
 
+// The address a browser opens: an IPv6 address in brackets.
+std::string dashboard_address(const std::string& bind, unsigned short port) {
+  const std::string host = bind.find(':') == std::string::npos ? bind : "[" + bind + "]";
+  return "http://" + host + ":" + std::to_string(port) + "/";
+}
+
 // Reopens the stores under --data-dir; a store that cannot be loaded is reported and left out.
 void load_stores(Registry& registry) {
   for (const std::string& problem : registry.load())
@@ -37,10 +47,12 @@ void load_stores(Registry& registry) {
 }
 
 // Answers on two threads (a slow query never stalls every client) until SIGINT or SIGTERM.
-void serve_until_signalled(boost::asio::io_context& io, fnet::rpc::Server& server) {
+void serve_until_signalled(boost::asio::io_context& io, fnet::rpc::Server& server,
+                           std::optional<fnet::web::HttpServer>& dashboard) {
   boost::asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code&, int) {
     server.stop();
+    if (dashboard) dashboard->stop();
     io.stop();
   });
   std::thread second([&io] { io.run(); });
@@ -62,13 +74,21 @@ int main(int argc, char** argv) {
     ApiContext context{registry};
     context.max_subscriptions_per_connection = o.max_subscriptions;
     context.offload = [&pool](std::function<void()> work) { boost::asio::post(pool, std::move(work)); };
-    fnet::rpc::Server server(io, o.bind, o.port, make_api(context), rpc_limits(o));
-    context.connections = [&server] { return server.connections(); };
+    const fnet::rpc::Handler api = make_api(context);
+    const fnet::rpc::Access access{o.token};
+    fnet::rpc::Server server(io, o.bind, o.port, api, rpc_limits(o), access);
+    std::optional<fnet::web::HttpServer> dashboard;
+    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, rpc_limits(o), access);
+    context.connections = [&server, &dashboard] {
+      return server.connections() + (dashboard ? dashboard->connections() : 0);
+    };
     Ingest ingest(registry, {static_cast<dds_domainid_t>(o.domain), o.max_in_flight});
     context.ingest_state = [&ingest] { return ingest.state(); };
     std::cout << "fnet-server listening on " << o.bind << ":" << server.port() << " data-dir " << o.data_dir
               << std::endl;
-    serve_until_signalled(io, server);
+    if (dashboard)
+      std::cout << "fnet-server dashboard on " << dashboard_address(o.bind, dashboard->port()) << std::endl;
+    serve_until_signalled(io, server, dashboard);
     ingest.stop();
     pool.join();  // finish what was taken, so the stores hold it
     std::cerr << "fnet-server: stopped\n";

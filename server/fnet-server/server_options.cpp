@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include <boost/asio/ip/address.hpp>
 #include <boost/program_options.hpp>
 
 #include "common/build_info/build_info.hpp"
+#include "server/rpc/access.hpp"
 
 namespace po = boost::program_options;
 
@@ -27,6 +30,12 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "port", po::value(&o.port)->default_value(o.port),
       "TCP port of the JSON API (0: any free port, printed at start)")(
       "bind", po::value(&o.bind)->default_value(o.bind), "address to listen on (loopback by default)")(
+      "http-port", po::value<unsigned short>(),
+      "TCP port of the dashboard: the page and the JSON API over a WebSocket, on the --bind address (0: any "
+      "free port, printed at start; default: no dashboard)")(
+      "token-file", po::value<std::string>(),
+      "a file holding the token every connection to the API and the dashboard must present (one line, 16 or more "
+      "of A-Z a-z 0-9 . _ ~ -); required to --bind any address but loopback")(
       "threads", po::value(&o.threads)->default_value(o.threads), "analysis threads")(
       "domain", po::value(&o.domain)->default_value(o.domain), "DDS domain id")(
       "max-in-flight", po::value(&o.max_in_flight)->default_value(o.max_in_flight),
@@ -51,10 +60,23 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       return 0;
     }
     po::notify(vm);
+    if (vm.count("http-port")) o.http_port = vm["http-port"].as<unsigned short>();
+    if (vm.count("token-file")) {
+      try {
+        o.token = fnet::rpc::read_token_file(vm["token-file"].as<std::string>());
+      } catch (const std::runtime_error& e) {
+        throw po::error(std::string("--token-file: ") + e.what());
+      }
+    }
     if (o.threads == 0 || o.max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
     boost::system::error_code bad_address;
     boost::asio::ip::make_address(o.bind, bad_address);
     if (bad_address) throw po::error("--bind '" + o.bind + "' is not an IP address");
+    // Never an open API or dashboard on a network: beyond loopback, only holders of the token.
+    if (!fnet::rpc::is_loopback(o.bind) && o.token.empty())
+      throw po::error("--bind " + o.bind +
+                      " is not a loopback address: give --token-file FILE, so that only those who hold the token "
+                      "may use the API and the dashboard");
   } catch (const po::error& e) {
     std::cerr << "fnet-server: " << e.what() << " (see --help)\n";
     return 2;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -10,8 +11,10 @@ namespace fnet::server {
 struct ServerOptions {
   std::string data_dir, bind = "127.0.0.1";
   unsigned short port = 7707;
-  unsigned threads = 1;  // analysis threads, >= 1; the default is the hardware's
-  int domain = 0;        // DDS domain id
+  std::optional<unsigned short> http_port;  // the dashboard's; none: not served
+  std::string token;                        // asked of every connection (--token-file); empty: none
+  unsigned threads = 1;                     // analysis threads, >= 1; the default is the hardware's
+  int domain = 0;                           // DDS domain id
   std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
               max_queued = 16 << 20;
   double gap_timeout = 30;  // seconds

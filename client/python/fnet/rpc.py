@@ -19,6 +19,7 @@ DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 7707
 DEFAULT_DIM = 1  # the diagram a request means when it names none: proto/api.md's `dim` default
 UNKNOWN_RUN = -32001  # proto/api.md's error code of an unknown run
+UNAUTHORIZED = -32007  # proto/api.md's error code of a connection that did not present the token
 
 
 class RpcError(Exception):
@@ -40,14 +41,21 @@ _DEFAULT = object()  # a connection's own timeout
 
 
 class _Connection:
-    """One TCP connection: requests out, lines in; notifications kept until asked for."""
+    """One TCP connection: requests out, lines in; notifications kept until asked for. With a
+    `token`, it is presented first (proto/api.md, "Access")."""
 
-    def __init__(self, host, port, timeout):
+    def __init__(self, host, port, timeout, token=None):
         self._sock = socket.create_connection((host, port), timeout=timeout)
         self._timeout = timeout
         self._buffer = bytearray()  # kept across a timeout: a line is never lost half read
         self._next_id = 1
         self.notifications = collections.deque()
+        if token:
+            try:
+                self.call("auth", {"token": token})
+            except BaseException:
+                self.close()
+                raise
 
     def close(self):
         self._sock.close()
@@ -180,8 +188,9 @@ class Subscription:
     long); next(timeout) waits at most `timeout` seconds and returns None when none came. Leaving a
     with-block, or close(), unsubscribes and closes the connection."""
 
-    def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert, track=None):
-        self._conn = _Connection(host, port, timeout)
+    def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert, track=None,
+                 token=None):
+        self._conn = _Connection(host, port, timeout, token)
         self._notification = notification
         self._unsubscribe = unsubscribe
         self._convert = convert
@@ -245,12 +254,14 @@ class Subscription:
 class Client:
     """A connection to fnet-server, opened on the first call. Where the server is: `host` and
     `port`, else FNET_HOST and FNET_PORT from the environment (as fnetctl), else 127.0.0.1:7707.
-    Usable as a context manager (closes the connection)."""
+    `token`, else FNET_TOKEN: the token a server started with --token-file asks for, presented
+    on each connection before any call. Usable as a context manager (closes the connection)."""
 
-    def __init__(self, host=None, port=None, timeout=60.0):
+    def __init__(self, host=None, port=None, timeout=60.0, token=None):
         self.host = host or os.environ.get("FNET_HOST") or DEFAULT_HOST
         self.port = int(port if port is not None else (os.environ.get("FNET_PORT") or DEFAULT_PORT))
         self.timeout = timeout
+        self.token = token or os.environ.get("FNET_TOKEN") or None
         self._conn = None
 
     def __enter__(self):
@@ -267,7 +278,7 @@ class Client:
     def call(self, method, params=None):
         """Any method by name, with its params as a dict; the raw result."""
         if self._conn is None:
-            self._conn = _Connection(self.host, self.port, self.timeout)
+            self._conn = _Connection(self.host, self.port, self.timeout, self.token)
         try:
             return self._conn.call(method, params)
         except (OSError, ConnectionError):
@@ -349,7 +360,7 @@ class Client:
                     raise
                 time.sleep(max(min(0.5, deadline - time.monotonic()), 0.0))
         return Subscription(self.host, self.port, self.timeout, "series.subscribe", _params(run=run, since=since),
-                            "series.point", "series.unsubscribe", Result)
+                            "series.point", "series.unsubscribe", Result, token=self.token)
 
     def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=DEFAULT_DIM, force="normal", q=None,
                            essential="floor", bin_width=None, bins=None, axis=None, ratio=None):
@@ -357,7 +368,7 @@ class Client:
         with numpy arrays; `reply` is the curve when subscribing and `curve` the curve with every
         notification taken so far applied (apply_bins)."""
         return Subscription(self.host, self.port, self.timeout, "ensemble.subscribe", _ensemble_params(**locals()),
-                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series, apply_bins)
+                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series, apply_bins, token=self.token)
 
 
 def _ensemble_params(self=None, **given):

@@ -1,6 +1,7 @@
 // Which requests are heavy: those that compute distances (distance.get, blocks.get, the curves,
-// a series that is not stored) hand their work to ApiContext::offload, fnet-server's analysis
-// pool, and end their call from there; the others answer at once on the transport's thread.
+// a series that is not stored) or read a network back from the store (network.get) hand their
+// work to ApiContext::offload, fnet-server's analysis pool, and end their call from there; the
+// others answer at once on the transport's thread.
 #include <exception>
 #include <functional>
 #include <optional>
@@ -80,6 +81,7 @@ TEST(HeavyMethods, DistancesBlocksCurvesAndComputedSeriesRunOffloadedTheRestAtOn
   const std::vector<Case> cases{
       {"distance.get", {{"run", "r"}, {"frame", 1}, {"other_frame", 0}, {"metric", "bottleneck"}}, true},
       {"blocks.get", {{"run", "r"}, {"frame", 1}, {"other_frame", 0}, {"metric", "bottleneck"}}, true},
+      {"network.get", {{"run", "r"}, {"frame", 1}}, true},
       {"ensemble.series", {{"run", "r"}, {"metric", "bottleneck"}}, true},
       {"series.get", {{"run", "r"}, {"metric", "wasserstein"}, {"q", 3}}, true},
       {"series.get", {{"run", "r"}, {"metric", "bottleneck"}, {"essential", "separate"}}, true},

@@ -1,0 +1,27 @@
+#include "server/web/http_server.hpp"
+
+#include <string>
+
+#include "server/web/http_connection.hpp"
+
+namespace fnet::web {
+
+namespace {
+const std::string kBusy =
+    "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\nContent-Length: "
+    "21\r\n\r\ntoo many connections\n";
+}
+
+HttpServer::HttpServer(boost::asio::io_context& io, const std::string& address, unsigned short port,
+                       rpc::Handler handler, rpc::ServerLimits limits, rpc::Access access)
+    : handler_(std::move(handler)),
+      limits_(limits),
+      access_(std::move(access)),
+      listener_(io, address, port, limits_.max_connections, kBusy,
+                [this](boost::asio::ip::tcp::socket socket, rpc::Strand strand, std::shared_ptr<void> slot) {
+                  std::make_shared<HttpConnection>(std::move(socket), std::move(strand), limits_, handler_, access_,
+                                                   listener_.port(), std::move(slot))
+                      ->start();
+                }) {}
+
+}  // namespace fnet::web
