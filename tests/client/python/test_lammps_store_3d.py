@@ -15,7 +15,7 @@ import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import SOURCE_DIR, artists, binary, canonical, render, start_server
+from conftest import SOURCE_DIR, artists, binary, canonical, expect_png, plot, render, start_server
 
 sys.path.insert(0, str(SOURCE_DIR / "tests" / "support"))
 import lammps_inputs  # noqa: E402
@@ -164,6 +164,13 @@ def test_the_change_between_two_stored_frames_is_drawn_in_the_slab(dumps, stored
     assert len(lines.get_segments()) == len([p for p in every if p in a and p in b])
     with pytest.raises(ValueError, match="one dimension"):
         figures.network_change(before, fnet.store.Frame(dict(after, dimension=2)))
+
+
+def test_the_command_line_draws_the_change_between_two_stored_3d_frames(dumps, tmp_path):
+    for name, view in (("slab", ["--slab", "1.5"]), ("projection", ["--projection"])):
+        out = tmp_path / f"change-{name}.png"
+        expect_png(plot("network", "--store", dumps / "stores" / f"{RUN}.h5", "--frame", 3, "--other-frame", 4,
+                        *view, "--out", out), out)
 
 
 def test_the_served_block_table_of_the_store_is_drawn_layer_by_layer(dumps, stored, processes, tmp_path):
