@@ -10,11 +10,9 @@
 
 #include "client/rpc/rpc_client.hpp"
 #include "common/analysis/blocks.hpp"
-#include "common/store/run_file.hpp"
+#include "tests/e2e/planted_fcc_run.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/e2e/service_process.hpp"
-#include "tests/support/fcc_packing.hpp"
-#include "tests/support/grid_cells.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::e2e {
@@ -26,47 +24,14 @@ using namespace std::chrono_literals;
 
 constexpr int kDomain3D = 87;  // CONTRIBUTING.md: the 3D blocks and explain service test
 
-// Frames 0 and 2 the packing, frame 1 with a change planted in cell (layer 2, row 0, col 1) of a
-// 3 x 3 x 3 grid: three different indices, so that no two axes can be swapped unseen.
-struct Planted3D {
-  Frame original, planted;
-};
-
-Planted3D plant_in_cell() {
-  Planted3D out;
-  out.original = testing::fcc_frame({.cells = 5});
-  out.planted = testing::strengthen(out.original, testing::contacts_in_cell(out.original, 3, 2, 0, 1, 0.2), 20);
-  return out;
-}
-
-fs::path write_run_file_3d(const fs::path& path, const Planted3D& run) {
-  RunInfo info;
-  info.run_id = "fcc3d";
-  info.particles = static_cast<std::uint32_t>(run.original.particle_count);
-  info.frames = 3;
-  info.config_json = "{}";
-  RunFileWriter w(path, info);
-  const Frame* frames[] = {&run.original, &run.planted, &run.original};
-  for (std::uint32_t k = 0; k < 3; ++k) {
-    RunFrame f;
-    f.header = {"fcc3d", k, 1000 * k, 0.0, 0.74, 12.0};
-    f.frame = *frames[k];
-    f.frame.label = "fcc3d frame " + std::to_string(k);
-    w.append(f);
-  }
-  return path;
-}
-
 TEST(Service3D, BlocksFindThePlantedCellAndExplainedGrainsCarryTheirZ) {
   testing::TempDir tmp;
-  const Planted3D run = plant_in_cell();
-  const fs::path file = write_run_file_3d(tmp.path() / "fcc3d.run.h5", run);
+  // A change planted in cell (layer 2, row 0, col 1) of a 3 x 3 x 3 grid: three different indices,
+  // so that no two axes can be swapped unseen.
+  const Planted3D run = plant_in_cell({});
+  const fs::path file = write_run_file_3d(tmp.path() / "fcc3d.run.h5", "fcc3d", run);
   ServerProcess server = start_server(tmp.path() / "data", kDomain3D, tmp.path() / "server.log");
-  Process pub(
-      FNET_ANALYZE,
-      {"publish", "--run-file", file.string(), "--domain", std::to_string(kDomain3D), "--wait-for-reader", "30"},
-      tmp.path() / "publish.log", dds_environment());
-  ASSERT_EQ(pub.wait(120s), 0) << "see " << tmp.path() / "publish.log";
+  ASSERT_EQ(publish_run_file(file, kDomain3D, tmp.path() / "publish.log"), 0) << "see " << tmp.path() / "publish.log";
   wait_for_frames(server.port, "fcc3d", 3);
   client::RpcClient rpc("127.0.0.1", server.port);
 

@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr int kDeliveryDomain = 121;
+constexpr int kDeliveryDomain = 201;
 
 // Five frames of four touching disks: small enough that the frames written while the server is
 // stopped all fit the writer's history, so that the publisher is left waiting for acknowledgements

@@ -76,6 +76,13 @@ std::optional<int> store_run(const fs::path& run_dir, const std::string& run_id,
   return p.wait(300s);
 }
 
+std::optional<int> publish_run_file(const fs::path& file, int domain, const fs::path& log) {
+  Process pub(FNET_ANALYZE,
+              {"publish", "--run-file", file.string(), "--domain", std::to_string(domain), "--wait-for-reader", "30"},
+              log, dds_environment());
+  return pub.wait(std::chrono::seconds(120));
+}
+
 std::unique_ptr<Process> publish(const fs::path& run_dir, const std::string& run_id, int domain, const fs::path& log,
                                  double rate, double linger, double wait_for_reader, const std::string& ensemble) {
   std::vector<std::string> args{"publish",

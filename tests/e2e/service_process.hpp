@@ -45,6 +45,10 @@ std::unique_ptr<Process> publish(const std::filesystem::path& run_dir, const std
                                  const std::filesystem::path& log, double rate = 0, double linger = 0,
                                  double wait_for_reader = 30, const std::string& ensemble = "");
 
+// fnet-analyze publish --run-file `file` onto DDS `domain` (waiting up to 30 s for a reader), run
+// to its end: its exit code, nullopt if it did not end within 120 s.
+std::optional<int> publish_run_file(const std::filesystem::path& file, int domain, const std::filesystem::path& log);
+
 // Polls runs.list until `run` has `frames` settled (committed or rejected) and none pending, and
 // returns its summary; throws with the last summary seen after `limit`.
 nlohmann::json wait_for_frames(unsigned short port, const std::string& run, std::size_t frames,

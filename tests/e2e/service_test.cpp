@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include "common/analysis/frame_analysis.hpp"
 #include "common/store/analysis_store.hpp"
 #include "tests/e2e/line_connection.hpp"
+#include "tests/e2e/planted_fcc_run.hpp"
 #include "tests/e2e/process.hpp"
 #include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -646,8 +648,39 @@ std::optional<std::string> shape_difference(const json& doc, const json& got, co
   return std::nullopt;
 }
 
+// Where `got` differs from `doc` in value (numbers within 1e-5 relative: the document rounds them;
+// arrays of the same length; "seconds" not compared), or nullopt.
+std::optional<std::string> value_difference(const json& doc, const json& got, const std::string& path) {
+  if (doc.is_number() && got.is_number()) {
+    const double a = doc.get<double>(), b = got.get<double>();
+    if (std::abs(a - b) <= 1e-5 * std::max(std::abs(a), std::abs(b)) + 1e-9) return std::nullopt;
+    return path + ": " + got.dump() + " where the document has " + doc.dump();
+  }
+  if (doc.type() != got.type()) return path + ": " + got.dump() + " where the document has " + doc.dump();
+  if (doc.is_object()) {
+    for (const auto& [key, value] : got.items())
+      if (!doc.contains(key)) return path + ": '" + key + "' is not in the document";
+    for (const auto& [key, value] : doc.items()) {
+      if (!got.contains(key)) return path + ": no '" + key + "'";
+      if (key == "seconds") continue;
+      if (auto d = value_difference(value, got[key], path + "." + key)) return d;
+    }
+    return std::nullopt;
+  }
+  if (doc.is_array()) {
+    if (doc.size() != got.size())
+      return path + ": " + std::to_string(got.size()) + " elements, the document " + std::to_string(doc.size());
+    for (std::size_t k = 0; k < doc.size(); ++k)
+      if (auto d = value_difference(doc[k], got[k], path + "[" + std::to_string(k) + "]")) return d;
+    return std::nullopt;
+  }
+  if (doc != got) return path + ": " + got.dump() + " where the document has " + doc.dump();
+  return std::nullopt;
+}
+
 // proto/api.md is the API's contract: each method's Params line lists exactly what the server
-// accepts, and each example ("→" request, "←" replies) gives replies of the shapes it shows.
+// accepts, and each example ("→" request, "←" replies) gives replies of the shapes it shows. The
+// examples of run "demo3d", a 3D run made here, give the values the document shows.
 TEST(Service, ApiDocumentListsWhatTheServerAcceptsAndItsExamplesRun) {
   DemoRun demo(55);
   const std::string doc = read_file(fs::path(FNET_SOURCE_DIR) / "proto" / "api.md");
@@ -691,29 +724,47 @@ TEST(Service, ApiDocumentListsWhatTheServerAcceptsAndItsExamplesRun) {
     }
   }
   ASSERT_GE(examples.size(), 8u);
+  // Run "demo3d" on a server of its own (DDS domain 203), started when the examples reach it: 108
+  // spheres of an FCC packing, frame 1 with the forces of 20 contacts changed in cell (layer 1,
+  // row 0, col 1) of a 2 x 2 x 2 grid.
+  ServerProcess server_3d;
+  std::unique_ptr<LineConnection> c_3d;
   for (const auto& [request, expected] : examples) {
     SCOPED_TRACE(request);
     ASSERT_FALSE(expected.empty()) << "an example without its reply";
-    const json id = json::parse(request)["id"];
-    c.notifications.clear();
-    c.send(request);
-    const json reply = c.reply(id);
+    const json sent = json::parse(request);
+    const bool three_d = sent.contains("params") && sent["params"].value("run", "") == "demo3d";
+    if (three_d && !c_3d) {
+      server_3d = start_server(demo.tmp.path() / "data-3d", 203, demo.tmp.path() / "server-3d.log");
+      const Planted3D fcc = plant_in_cell({.cells = 3, .k = 2, .layer = 1, .row = 0, .col = 1});
+      ASSERT_EQ(publish_run_file(write_run_file_3d(demo.tmp.path() / "demo3d.run.h5", "demo3d", fcc), 203,
+                                 demo.tmp.path() / "publish-3d.log"),
+                0);
+      wait_for_frames(server_3d.port, "demo3d", 3);
+      c_3d = std::make_unique<LineConnection>(server_3d.port);
+    }
+    LineConnection& to = three_d ? *c_3d : c;
+    to.notifications.clear();
+    to.send(request);
+    const json reply = to.reply(sent["id"]);
     for (const json& e : expected) {
       if (e.contains("id")) {
         if (auto d = shape_difference(e, reply, "reply")) ADD_FAILURE() << *d << "\n  got " << reply;
+        if (auto d = three_d ? value_difference(e, reply, "reply") : std::nullopt)
+          ADD_FAILURE() << *d << "\n  got " << reply;
         if (e.contains("error")) {
           EXPECT_EQ(reply["error"]["code"], e["error"]["code"]);
         }
         continue;
       }
       // A notification: it may come before or after the reply.
-      while (std::none_of(c.notifications.begin(), c.notifications.end(),
+      while (std::none_of(to.notifications.begin(), to.notifications.end(),
                           [&](const json& n) { return n["method"] == e["method"]; })) {
-        const auto n = c.next(10s);
+        const auto n = to.next(10s);
         ASSERT_TRUE(n) << "no " << e["method"] << " notification";
-        c.notifications.push_back(*n);
+        to.notifications.push_back(*n);
       }
-      for (const json& n : c.notifications)
+      for (const json& n : to.notifications)
         if (n["method"] == e["method"]) {
           if (auto d = shape_difference(e, n, "notification")) ADD_FAILURE() << *d << "\n  got " << n;
         }

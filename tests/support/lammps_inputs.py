@@ -10,7 +10,8 @@ to 0.76, Z from 0 to about 7.5), then left at rest under viscous damping, all in
 steps, with `doc` (the lines proto/lammps.md has a user add) before it. One run because, measured
 with this LAMMPS, a `run` after a run with fix deform in 3D leaves many touching pairs out of the
 neighbour lists of the history pair styles (gran/hooke/history, granular with linear_history: the
-pair dump, contact/atom and the forces alike), while the same positions read afresh have them.
+pair dump, contact/atom and the forces alike), while the same positions read afresh have them;
+spheres(doc, rest_apart=True) is the input with that fault: the rest in a second run.
 
 disks_between_planes(fix, dump): 48 disks (diameters uniform in [1.0, 1.1]) squeezed between two
 planes of fix wall/gran (`fix`, its ID w; periodic in x) come to rest over 20000 steps, then 2000
@@ -65,7 +66,7 @@ variable squeezed equal elaplong*dt/8.0
 variable shrink equal "-1.2*(v_squeezed*(v_squeezed<1)+(v_squeezed>=1))"
 variable shrink_rate equal "-0.15*(v_squeezed<1)"
 fix squeeze all deform 1 x variable v_shrink v_shrink_rate y variable v_shrink v_shrink_rate z variable v_shrink v_shrink_rate remap x
-{after}run 12000 post no
+{after}{runs}
 """
 
 _PLANES = """dimension 2
@@ -106,10 +107,13 @@ def disks(seed=4711, pair="granular"):
     return _DISKS.format(seed=seed, pair=PAIR_STYLES[pair])
 
 
-def spheres(doc, after="", seed=4711, pair="granular"):
-    """The whole 3D input: `doc` (LAMMPS lines) before the squeeze, `after` after it, then its run.
+def spheres(doc, after="", seed=4711, pair="granular", rest_apart=False):
+    """The whole 3D input: `doc` (LAMMPS lines) before the squeeze, `after` after it, then its run
+    (with `rest_apart`, one run of the squeeze and one of the rest after it, without fix deform).
     A fix in `after` sees each step's box as the dumps do, after fix deform has changed it."""
-    return _SPHERES.format(seed=seed, pair=PAIR_STYLES[pair], doc=doc.rstrip("\n"), after=after)
+    runs = (f"run {SPHERES_SQUEEZED_AT} post no\nunfix squeeze\nrun {SPHERES_STEPS - SPHERES_SQUEEZED_AT} post no"
+            if rest_apart else f"run {SPHERES_STEPS} post no")
+    return _SPHERES.format(seed=seed, pair=PAIR_STYLES[pair], doc=doc.rstrip("\n"), after=after, runs=runs)
 
 
 def disks_between_planes(fix, dump):

@@ -286,14 +286,14 @@ def _draw_network(args, record):
 
     frames, walls = _read_file(path, args.run_file, read)
     if figures.dimension_of(frames[0]) == 3:
-        slab = figures.SLAB_HALF_WIDTH if args.slab is None else args.slab
-        if len(frames) == 1:
-            return figures.network(frames[0], force=args.force, slab=slab, projection=args.projection)
+        view = {"slab": figures.SLAB_HALF_WIDTH if args.slab is None else args.slab, "projection": args.projection}
     elif args.slab is not None or args.projection:
         raise ValueError(f"--slab and --projection draw 3D frames; frame {args.frame} of {path} is 2D")
+    else:
+        view = {"walls": walls}
     if len(frames) == 1:
-        return figures.network(frames[0], force=args.force, walls=walls)
-    return figures.network_change(*frames, force=args.force, walls=walls)
+        return figures.network(frames[0], force=args.force, **view)
+    return figures.network_change(*frames, force=args.force, **view)
 
 
 def _draw_served(args, c, record):

@@ -280,30 +280,45 @@ def network(frame, force="normal", cmap="viridis", grains=True, walls=None, slab
     return fig
 
 
-def _network_3d(frame, force, cmap, grains, walls, slab, z_centre, projection):
+def _no_walls(walls):
     if walls is not None:
         raise ValueError("walls: fnet-simd's walls are those of a 2D run; a 3D frame is drawn in its spheres' "
                          "bounding box")
+
+
+def _view_3d(frame, pairs, slab, z_centre, projection, of_what):
+    """(keep, bounds, where): which `pairs` a 3D figure of `frame` draws (those whose contact point
+    lies in the slab, or all with `projection`), the slab's (lo, hi) (None for the projection) and
+    the caption saying so; `of_what` names the pairs ("of the network")."""
+    if projection:
+        return (np.ones(len(pairs), dtype=bool), None,
+                f"every contact {of_what} ({len(pairs)}), projected on xy")
+    bounds = slab_of(frame, slab, z_centre)
+    keep = in_slab(frame, pairs, bounds)
+    return keep, bounds, (f"the {int(keep.sum())} of {len(pairs)} contacts {of_what} whose contact point lies in "
+                          f"the slab\n{bounds[0]:.2f} ≤ z ≤ {bounds[1]:.2f} ({2 * slab:g} d thick), seen from +z; "
+                          "circles: each sphere's part inside the slab")
+
+
+def _slab_grains(ax, frame, bounds):
+    """The "grains" discs of slab_discs: each sphere's part inside the slab, seen from +z."""
+    indices, radii = slab_discs(frame, bounds)
+    p = frame.particles
+    ax.add_collection(PatchCollection([Circle((p[g, 0], p[g, 1]), rad) for g, rad in zip(indices, radii)],
+                                      facecolor="none", edgecolor="0.6", linewidth=0.3, gid="grains"))
+
+
+def _network_3d(frame, force, cmap, grains, walls, slab, z_centre, projection):
+    _no_walls(walls)
     pairs, values = normalized_network(frame, force)
     top = colour_top(values)
-    if projection:
-        keep = np.ones(len(pairs), dtype=bool)
-        where = f"every contact of the network ({len(pairs)}), projected on xy"
-    else:
-        bounds = slab_of(frame, slab, z_centre)
-        keep = in_slab(frame, pairs, bounds)
-        where = (f"the {int(keep.sum())} of {len(pairs)} contacts whose contact point lies in the slab "
-                 f"{bounds[0]:.2f} ≤ z ≤ {bounds[1]:.2f} ({2 * slab:g} d thick), seen from +z;\n"
-                 "circles: each sphere's part inside the slab")
+    keep, bounds, where = _view_3d(frame, pairs, slab, z_centre, projection, "of the network")
     order = np.argsort(values[keep], kind="stable")  # weakest first: strong chains drawn on top
     shown, shown_values = pairs[keep][order], values[keep][order]
     fig = _figure(6.4, 6.9)
     ax = fig.add_subplot()
     if grains and not projection:
-        indices, radii = slab_discs(frame, bounds)
-        p = frame.particles
-        ax.add_collection(PatchCollection([Circle((p[g, 0], p[g, 1]), rad) for g, rad in zip(indices, radii)],
-                                          facecolor="none", edgecolor="0.6", linewidth=0.3, gid="grains"))
+        _slab_grains(ax, frame, bounds)
     biggest = float(values.max()) if len(values) else 0.0
     lines = _contact_lines(ax, _segments(frame.particles[:, :2], shown), shown_values, cmap, top)
     fig.colorbar(lines, ax=ax, shrink=0.8, extend="max" if biggest > top else "neither",
@@ -336,35 +351,54 @@ def contact_change(before, after, force="normal"):
     return pairs, np.nan_to_num(f_after, nan=0.0) - np.nan_to_num(f_before, nan=0.0)
 
 
-def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True, walls=None):
+def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True, walls=None, slab=SLAB_HALF_WIDTH,
+                   z_centre=None, projection=False):
     """The difference between two frames' force networks, drawn in `after`'s positions: the
     contacts of both networks (the "contacts" LineCollection) coloured by their normalized force in
     `after` minus that in `before` (the scale topped at the 99th percentile of |change|), the
     contacts created (in `after` only: "created", green, solid) and broken (in `before` only:
     "broken", grey, dashed); each collection's contacts in the order of contact_states. `walls`
-    as in network(). Frames of 2D runs only: a 3D frame raises ValueError (draw each with network())."""
-    if 3 in (dimension_of(before), dimension_of(after)):
-        raise ValueError("network_change draws 2D frames; draw each 3D frame with network(), a slab or the "
-                         "projection")
+    as in network().
+
+    Two 3D frames are seen from +z as network() sees one, in `after`'s positions: the contacts of
+    either network whose contact point lies in `after`'s slab (`slab`, `z_centre`), or every one
+    with `projection`, and the "grains" discs of the slab; the "contacts" are drawn smallest
+    |change| first, so that the largest changes stay on top. The changes and their colour scale are
+    those of the whole networks either way."""
+    dimension = dimension_of(after)
+    if dimension_of(before) != dimension:
+        raise ValueError(f"before and after: two frames of one dimension, not {dimension_of(before)}D and "
+                         f"{dimension}D")
     pairs, f_before, f_after = contact_states(before, after, force)
     created, broken = np.isnan(f_before), np.isnan(f_after)
     kept = ~created & ~broken
-    change = f_after[kept] - f_before[kept]
+    change = f_after - f_before  # NaN but where kept
+    span = colour_top(np.abs(change[kept]))
+    biggest = float(np.abs(change[kept]).max()) if kept.any() else 0.0
+    order = np.arange(len(pairs))
+    if dimension == 3:
+        _no_walls(walls)
+        shown, bounds, where = _view_3d(after, pairs, slab, z_centre, projection, "of either network")
+        order = order[shown]
+        order = order[np.argsort(np.abs(np.nan_to_num(change[order])), kind="stable")]
+    pairs, created, broken, kept, change = pairs[order], created[order], broken[order], kept[order], change[order]
     segments = _segments(after.particles[:, :2], pairs)
-    fig = _figure(6.4, 6.6)
+    fig = _figure(6.4, 6.6 if dimension == 2 else 7.2)
     ax = fig.add_subplot()
-    if grains:
+    if grains and dimension == 2:
         _grains(ax, after.particles)
-    span = colour_top(np.abs(change))
-    biggest = float(np.abs(change).max()) if len(change) else 0.0
-    lines = LineCollection(segments[kept], array=change, cmap=cmap, norm=TwoSlopeNorm(0, -span, span),
-                           linewidths=0.4 + 1.6 * np.minimum(np.abs(change) / span, 1.0), gid="contacts", zorder=2)
+    elif grains and not projection:
+        _slab_grains(ax, after, bounds)
+    lines = LineCollection(segments[kept], array=change[kept], cmap=cmap, norm=TwoSlopeNorm(0, -span, span),
+                           linewidths=0.4 + 1.6 * np.minimum(np.abs(change[kept]) / span, 1.0), gid="contacts",
+                           zorder=2)
     ax.add_collection(lines)
     ax.add_collection(LineCollection(segments[broken], colors="black", linewidths=0.9, linestyles=(0, (3, 2)),
                                      gid="broken", zorder=3))
     ax.add_collection(LineCollection(segments[created], colors="tab:green", linewidths=1.2, gid="created", zorder=3))
+    whole = " (over the whole networks)" if dimension == 3 else ""
     fig.colorbar(lines, ax=ax, shrink=0.7, extend="both" if biggest > span else "neither",
-                 label=f"change of {force} force, {FORCE_UNIT}\n(scale to the {COLOUR_PERCENTILE:g}th "
+                 label=f"change of {force} force, {FORCE_UNIT}{whole}\n(scale to the {COLOUR_PERCENTILE:g}th "
                        f"percentile of |change|; max {biggest:.3g})")
     handles = [Line2D([], [], color="tab:green", linewidth=1.2, label=f"created ({int(created.sum())})"),
                Line2D([], [], color="black", linewidth=0.9, linestyle=(0, (3, 2)),
@@ -373,9 +407,13 @@ def network_change(before, after, force="normal", cmap=CHANGE_CMAP, grains=True,
                       label=f"in both ({int(kept.sum())}): colour = change")]
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize="small",
               frameon=False)
-    fig.supxlabel(_packing_axes(ax, after, walls), fontsize="small")
-    ax.set_title(f"{after.get('run', '')}\nframe {before.index} → {after.index}, " + r"$\rho$"
-                 + f" = {before.rho:.4f} → {after.rho:.4f}")
+    if dimension == 2:
+        fig.supxlabel(_packing_axes(ax, after, walls), fontsize="small")
+    else:
+        fig.supxlabel(f"{where}\n{_packing_axes(ax, after, None)}", fontsize="small")
+    ax.set_title(f"{after.get('run', '')}\nframe {before.index} → {after.index}" + (", 3D" if dimension == 3 else "")
+                 + ", " + r"$\rho$" + f" = {before.rho:.4f} → {after.rho:.4f}"
+                 + (VOLUME_FRACTION if dimension == 3 else ""))
     return fig
 
 

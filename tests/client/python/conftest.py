@@ -15,6 +15,7 @@ import time
 import zlib
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 SOURCE_DIR = Path(os.environ.get("FNET_SOURCE_DIR", Path(__file__).resolve().parents[3]))
@@ -109,8 +110,9 @@ class Server:
         return self.data_dir / f"{run}.h5"
 
 
-def start_server(processes, domain, name="server"):
-    data = processes.tmp / f"{name}-data"
+def start_server(processes, domain, name="server", data=None):
+    """fnet-server on `domain`, its stores in `data` (default a folder of its own)."""
+    data = data or processes.tmp / f"{name}-data"
     p = processes.start([binary("FNET_SERVER"), "--data-dir", data, "--port", "0", "--domain", domain, "--threads",
                          "2"], f"{name}.log")
     line = p.read_line()
@@ -208,6 +210,24 @@ def simd_run_file(processes, domain, frames):
 
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def render(fig, path):
+    """Saves the figure as a PNG file at `path` and checks that it is one."""
+    fig.savefig(path)
+    with open(path, "rb") as f:
+        assert f.read(8) == PNG_SIGNATURE
+
+
+def artists(fig, gid):
+    """The artists of the figure's axes whose gid is `gid`."""
+    return [a for ax in fig.axes for a in ax.get_children() if a.get_gid() == gid]
+
+
+def canonical(segments, values):
+    """Rows (x0, y0, x1, y1, value) sorted: what was drawn, whatever its order."""
+    rows = np.column_stack([np.asarray(segments, dtype=np.float64).reshape(-1, 4), values])
+    return rows[np.lexsort(rows.T[::-1])]
 
 
 def plot(*args, port=None):

@@ -12,7 +12,7 @@ import pytest
 
 import fnet
 import fnet.figures as figures
-from conftest import PNG_SIGNATURE, binary
+from conftest import artists, binary, canonical, render
 from fnet.rpc import _blocks
 from fnet.store import Frame
 from lammps_3d import compression_run, settled_frame
@@ -21,22 +21,6 @@ from lammps_3d import compression_run, settled_frame
 @pytest.fixture(scope="module")
 def settled(tmp_path_factory):
     return settled_frame(tmp_path_factory.mktemp("settle"))
-
-
-def render(fig, path):
-    fig.savefig(path)
-    with open(path, "rb") as f:
-        assert f.read(8) == PNG_SIGNATURE
-
-
-def artists(fig, gid):
-    return [a for ax in fig.axes for a in ax.get_children() if a.get_gid() == gid]
-
-
-def canonical(segments, values):
-    """Rows (x0, y0, x1, y1, value) sorted: what was drawn, whatever its order."""
-    rows = np.column_stack([np.asarray(segments).reshape(-1, 4), values])
-    return rows[np.lexsort(rows.T[::-1])]
 
 
 def test_a_slab_draws_exactly_the_contacts_whose_contact_point_lies_in_it(settled, tmp_path):
@@ -120,8 +104,8 @@ def test_slab_discs_and_contact_points_by_hand():
     assert figures.in_slab(f, f.contact_pairs, (0.5, 1.0)).tolist() == [False]
     with pytest.raises(ValueError, match="walls"):
         figures.network(f, walls={"box": 10.0, "wall_diameter": 1.0})
-    with pytest.raises(ValueError, match="network_change draws 2D frames"):
-        figures.network_change(f, f)
+    with pytest.raises(ValueError, match="walls"):
+        figures.network_change(f, f, walls={"box": 10.0, "wall_diameter": 1.0})
     with pytest.raises(ValueError, match="needs particle_z"):
         figures.network(Frame({k: v for k, v in f.items() if k != "particle_z"}))
 

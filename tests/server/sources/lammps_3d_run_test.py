@@ -23,7 +23,9 @@ blocks then run in the dumps' folder (fnet-analyze store, diagram, explain). Che
   and its component differ by up to about 1e-8, checked here too.)
 - the force balance of the frames at rest (--check-balance), and its failure when the normal force is
   read as the whole pair force;
-- diagram of one file = diagram of the pattern at its TIMESTEP; explain from two TIMESTEPs.
+- diagram of one file = diagram of the pattern at its TIMESTEP; explain from two TIMESTEPs;
+- the page's warning: the same input with the rest in a run after the squeeze's keeps the pairs the
+  page says, and the frames of that rest fail the force balance.
 Exit status 0 when every check holds, 1 otherwise.
 """
 import json
@@ -111,6 +113,16 @@ class Frame:
     def pushing(self):
         """How many pairs' normal force pushes i away from j."""
         return int(np.count_nonzero(self.normal_component() > 0))
+
+
+def entries(pair_dump):
+    """NUMBER OF ENTRIES of a local dump of one snapshot."""
+    return int(open(pair_dump).read().split("\n")[3])
+
+
+def spaced(n):
+    """n as the page writes it: 1 357."""
+    return f"{n:,}".replace(",", " ")
 
 
 def gudhi_diagrams(frame, force):
@@ -227,6 +239,20 @@ def main():
                          "fz=c_fnet_force[3]' --run-id spheres-wrong")
     r = subprocess.run(wrong, shell=True, cwd=work, env=env, capture_output=True, text=True)
     check(r.returncode == 1 and "out of force balance" in r.stderr, f"columns swapped: {r.stderr.strip()[:200]}")
+
+    # The page's warning: the rest in a run of its own after fix deform's keeps fewer pairs than
+    # touch (the counts the page gives), and the force balance of its frames at rest fails.
+    apart = os.path.join(work, "rest-apart")
+    os.makedirs(apart)
+    wrong = run_lammps(a.lmp, apart, lammps_inputs.spheres("".join(blocks(doc, "lammps 3d")), rest_apart=True))
+    check(not wrong, f"lmp ran the rest apart {wrong}")
+    squeezed, rested = (entries(os.path.join(apart, f"pairs.{step}.txt"))
+                        for step in (lammps_inputs.SPHERES_SQUEEZED_AT, lammps_inputs.SPHERES_STEPS))
+    check(f"{spaced(rested)} of {spaced(squeezed)}" in doc,
+          f"the rest apart: {rested} of the {squeezed} pairs kept, as the page says")
+    r = subprocess.run(rest, shell=True, cwd=apart, env=env, capture_output=True, text=True)
+    check(r.returncode == 1 and "out of force balance" in r.stderr,
+          f"the rest apart fails the force balance: {r.stderr.strip()[:200]}")
     print("FAILED: " + "; ".join(failures) if failures else "all checks hold")
     return 1 if failures else 0
 
