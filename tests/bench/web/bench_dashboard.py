@@ -118,9 +118,7 @@ def main():
     os.environ["FNET_CHROMIUM_EXTRA"] = "--enable-precise-memory-info --js-flags=--expose-gc"
     cycled_run(os.path.join(work, "big"), 100)
     lattice_run(os.path.join(work, "huge"))
-    # 20 runs published at once fill a reader of the default 64 frames in flight, and fnet-analyze
-    # publish may then end before its last frame is taken: room for all of them.
-    server = Server(build, SOURCE_DIR, work, DOMAIN, ["--threads", "2", "--max-in-flight", "512"])
+    server = Server(build, SOURCE_DIR, work, DOMAIN, ["--threads", "2"])
     api = Api(server.port)
     rows = Rows()
     print(f"the dashboard in headless Chromium {chromium_version()}, fnet-server with 2 analysis threads, "
