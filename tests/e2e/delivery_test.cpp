@@ -106,5 +106,25 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
   }
 }
 
+TEST(Delivery, FnetSimdWithOnlyDdsFailsWhenAReaderStopsAcknowledging) {
+  testing::TempDir tmp;
+  ServerProcess server = start_server(tmp.path() / "data", kDeliveryDomain + 10, tmp.path() / "server.log");
+  Resume resume{*server.process};
+  // A short compression of 150 disks, 8 frames, DDS its only output.
+  Process simd(FNET_SIMD,
+               {"--particles", "150", "--box", "13.7", "--compression-speed", "2e-3", "--frames", "8", "--seed", "11",
+                "--run-id", "simd", "--domain", std::to_string(kDeliveryDomain + 10), "--ack-timeout", "2", "--quiet"},
+               tmp.path() / "simd.log", dds_environment());
+  wait_for_frames(server.port, "simd", 1, 120s);
+  server.process->signal(SIGSTOP);
+  const std::optional<int> code = simd.wait(120s);
+  ASSERT_TRUE(code.has_value());
+  const std::string err = read_file(tmp.path() / "simd.log");
+  EXPECT_EQ(*code, 3) << err;
+  EXPECT_NE(err.find("error: a DDS subscriber had not acknowledged every frame after --ack-timeout 2 s"),
+            std::string::npos)
+      << err;
+}
+
 }  // namespace
 }  // namespace fnet::e2e
