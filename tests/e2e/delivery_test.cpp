@@ -24,7 +24,7 @@ constexpr int kDeliveryDomain = 201;
 // Five frames of four touching disks: small enough that the frames written while the server is
 // stopped all fit the writer's history, so that the publisher is left waiting for acknowledgements
 // rather than for a write.
-fs::path small_run(const fs::path& dir) {
+fs::path four_disk_run(const fs::path& dir) {
   fs::create_directories(dir);
   std::ofstream index(dir / "index.csv");
   index << "frame,step,rho,Z\n";
@@ -63,8 +63,8 @@ std::unique_ptr<Process> publish_while_server_stops(const fs::path& run_dir, con
 
 TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
   testing::TempDir tmp;
-  const fs::path run_dir = small_run(tmp.path() / "run");
-  ServerProcess server = start_server(tmp.path() / "data", kDeliveryDomain, tmp.path() / "server.log");
+  const fs::path run_dir = four_disk_run(tmp.path() / "run");
+  ServerProcess server = e2e::start_server(tmp.path() / "data", kDeliveryDomain, tmp.path() / "server.log");
   {
     Resume resume{*server.process};
     auto publisher =
@@ -108,7 +108,7 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
 
 TEST(Delivery, FnetSimdWithOnlyDdsFailsWhenAReaderStopsAcknowledging) {
   testing::TempDir tmp;
-  ServerProcess server = start_server(tmp.path() / "data", kDeliveryDomain + 10, tmp.path() / "server.log");
+  ServerProcess server = e2e::start_server(tmp.path() / "data", kDeliveryDomain + 10, tmp.path() / "server.log");
   Resume resume{*server.process};
   // A short compression of 150 disks, 8 frames, DDS its only output.
   Process simd(FNET_SIMD,
