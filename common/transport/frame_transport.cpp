@@ -1,5 +1,6 @@
 #include "common/transport/frame_transport.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <string>
@@ -195,10 +196,11 @@ void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
   }
 }
 
-std::uint32_t FramePublisher::matched_frame_readers() const {
-  dds_publication_matched_status_t status{};
-  check(dds_get_publication_matched_status(frame_writer_, &status), "dds_get_publication_matched_status");
-  return status.current_count;
+std::uint32_t FramePublisher::matched_readers() const {
+  dds_publication_matched_status_t info{}, frames{};
+  check(dds_get_publication_matched_status(info_writer_, &info), "dds_get_publication_matched_status");
+  check(dds_get_publication_matched_status(frame_writer_, &frames), "dds_get_publication_matched_status");
+  return std::min(info.current_count, frames.current_count);
 }
 
 std::uint32_t FramePublisher::lost_frame_readers() const {

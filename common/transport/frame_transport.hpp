@@ -26,7 +26,9 @@ class FramePublisher {
   // Retries a write that timed out until `give_up` has passed; throws dds::Error then.
   void publish(const RunFrame& frame, dds_duration_t give_up = DDS_SECS(600));
 
-  std::uint32_t matched_frame_readers() const;
+  // Subscribers matched on both topics: a frame written once this is positive reaches one whose
+  // announcement reader is matched too (the two topics are discovered separately).
+  std::uint32_t matched_readers() const;
   // Frame readers matched at some point that are no longer: gone, or silent for longer than the
   // DDS lease (10 s by default). A writer does not wait for them: what they had not acknowledged
   // is theirs again only if they come back while this publisher still lives.

@@ -52,7 +52,7 @@ int publish_command(const std::vector<std::string>& args) {
   // Discovery takes a moment; frames written before it are still served to late readers only
   // while this process lives (see --linger).
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_for_reader);
-  while (publisher.matched_frame_readers() == 0 && std::chrono::steady_clock::now() < give_up)
+  while (publisher.matched_readers() == 0 && std::chrono::steady_clock::now() < give_up)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   publisher.publish(info);
   const auto start = std::chrono::steady_clock::now();
@@ -65,7 +65,7 @@ int publish_command(const std::vector<std::string>& args) {
   }
   const bool acknowledged = publisher.wait_for_acks(static_cast<dds_duration_t>(ack_timeout * 1e9));
   std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << published << " frames published, "
-            << publisher.matched_frame_readers() << " reader(s) matched\n";
+            << publisher.matched_readers() << " reader(s) matched\n";
   const std::uint32_t lost = publisher.lost_frame_readers();
   if (lost > 0)
     std::cerr << "fnet-analyze publish: error: run " << info.run_id << ": " << lost

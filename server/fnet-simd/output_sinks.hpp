@@ -42,7 +42,7 @@ class DdsSink {
   Delivery finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
   // Whether any frame reader was matched at a frame's publication or during finish().
   bool reached_a_subscriber() const { return reached_; }
-  bool subscriber_now() const { return publisher_.matched_frame_readers() > 0; }
+  bool subscriber_now() const { return publisher_.matched_readers() > 0; }
 
  private:
   dds::FramePublisher publisher_;

@@ -11,9 +11,10 @@ import tempfile
 import threading
 import time
 
+# --remote-debugging-pipe: ChromeDriver talks to Chromium over a pipe, not over TCP to "localhost".
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--disable-dev-shm-usage"]
+                  "--disable-dev-shm-usage", "--remote-debugging-pipe"]
 
 
 class Server:
@@ -129,9 +130,11 @@ def latencies(driver, times):
 
 
 def browser(width=1400, height=1000):
-    """Headless Chromium with a fresh profile, its console kept (goog:loggingPrefs)."""
+    """Headless Chromium with a fresh profile, its console kept (goog:loggingPrefs). ChromeDriver is
+    started here and reached at 127.0.0.1: Selenium's own service reaches it by the name localhost,
+    which a minimal system without /etc/hosts does not resolve (nor does Chromium's DevTools client,
+    hence the pipe)."""
     from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service as DriverService
 
     options = webdriver.ChromeOptions()
     options.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
@@ -140,15 +143,45 @@ def browser(width=1400, height=1000):
     for flag in CHROMIUM_FLAGS + extra + [f"--user-data-dir={profile}", f"--window-size={width},{height}"]:
         options.add_argument(flag)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=DriverService(shutil.which("chromedriver") or "/usr/bin/chromedriver"),
-                              options=options)
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    chromedriver = subprocess.Popen([shutil.which("chromedriver") or "/usr/bin/chromedriver", f"--port={port}"],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        wait_until(lambda: chromedriver.poll() is not None or _connectable(port), 30, "chromedriver to listen")
+        if chromedriver.poll() is not None:
+            raise RuntimeError(f"chromedriver exited with status {chromedriver.returncode}")
+        driver = webdriver.Remote(command_executor=f"http://127.0.0.1:{port}", options=options)
+    except BaseException:
+        chromedriver.kill()
+        chromedriver.wait()
+        shutil.rmtree(profile, ignore_errors=True)
+        raise
     driver.fnet_profile = profile
+    driver.fnet_chromedriver = chromedriver
     return driver
 
 
+def _connectable(port):
+    try:
+        socket.create_connection(("127.0.0.1", port), timeout=1).close()
+        return True
+    except OSError:
+        return False
+
+
 def close_browser(driver):
-    driver.quit()
-    shutil.rmtree(driver.fnet_profile, ignore_errors=True)
+    try:
+        driver.quit()
+    finally:
+        driver.fnet_chromedriver.terminate()
+        try:
+            driver.fnet_chromedriver.wait(10)
+        except subprocess.TimeoutExpired:
+            driver.fnet_chromedriver.kill()
+            driver.fnet_chromedriver.wait()
+        shutil.rmtree(driver.fnet_profile, ignore_errors=True)
 
 
 def wait_until(condition, limit, what, step=0.05):

@@ -21,14 +21,16 @@ using namespace std::chrono_literals;
 
 constexpr int kDeliveryDomain = 201;
 
-// Five frames of four touching disks: small enough that the frames written while the server is
-// stopped all fit the writer's history, so that the publisher is left waiting for acknowledgements
-// rather than for a write.
+// Frames of four touching disks: small enough that the frames written while the server is stopped
+// all fit the writer's history, so that the publisher is left waiting for acknowledgements rather
+// than for a write.
+constexpr int kFrames = 10;
+
 fs::path four_disk_run(const fs::path& dir) {
   fs::create_directories(dir);
   std::ofstream index(dir / "index.csv");
   index << "frame,step,rho,Z\n";
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < kFrames; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04d", k);
     std::ofstream particles(dir / (std::string(name) + "_particles.csv"));
@@ -46,14 +48,15 @@ struct Resume {
   ~Resume() { server.signal(SIGCONT); }
 };
 
-// Publishes at 2 frames per second and stops the server once its first frame is committed: the
-// later frames are written while it cannot acknowledge them.
+// Publishes `rate` frames a second and stops the server once its first frame is committed: the later
+// frames are written while it cannot acknowledge them, as long as committing the first takes less
+// than the publication's (kFrames - 1) / rate seconds.
 std::unique_ptr<Process> publish_while_server_stops(const fs::path& run_dir, const std::string& run,
-                                                    ServerProcess& server, const fs::path& log,
+                                                    ServerProcess& server, const fs::path& log, const char* rate,
                                                     const std::vector<std::string>& extra) {
   std::vector<std::string> args{
       "publish", "--csv-dir", run_dir.string(),    "--run-id", run, "--domain", std::to_string(kDeliveryDomain),
-      "--rate",  "2",         "--wait-for-reader", "30"};
+      "--rate",  rate,        "--wait-for-reader", "30"};
   args.insert(args.end(), extra.begin(), extra.end());
   auto publisher = std::make_unique<Process>(FNET_ANALYZE, args, log, dds_environment());
   wait_for_frames(server.port, run, 1, 60s);
@@ -67,8 +70,9 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
   ServerProcess server = e2e::start_server(tmp.path() / "data", kDeliveryDomain, tmp.path() / "server.log");
   {
     Resume resume{*server.process};
-    auto publisher =
-        publish_while_server_stops(run_dir, "short-wait", server, tmp.path() / "short.log", {"--ack-timeout", "2"});
+    // Publication (4.5 s) and --ack-timeout end within the DDS lease: the reader is late, not gone.
+    auto publisher = publish_while_server_stops(run_dir, "short-wait", server, tmp.path() / "short.log", "2",
+                                                {"--ack-timeout", "2"});
     const std::optional<int> code = publisher->wait(60s);
     ASSERT_TRUE(code.has_value()) << "publish did not end while its reader was stopped";
     EXPECT_EQ(*code, 3);
@@ -81,21 +85,23 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
 
   {
     Resume resume{*server.process};
-    auto publisher = publish_while_server_stops(run_dir, "long-wait", server, tmp.path() / "long.log", {});
-    // The stall outlasts the frames' publication (2 s at 2 frames per second) by several seconds.
-    std::this_thread::sleep_for(6s);
+    // The stall outlasts the frames' publication (at most 4.5 s after the stop) but not the DDS
+    // lease (10 s), after which the stopped server would count as gone.
+    auto publisher = publish_while_server_stops(run_dir, "long-wait", server, tmp.path() / "long.log", "2", {});
+    std::this_thread::sleep_for(7s);
     EXPECT_FALSE(publisher->wait(0ms).has_value()) << "publish ended while its reader was stopped";
     server.process->signal(SIGCONT);
     const std::optional<int> code = publisher->wait(60s);
     ASSERT_TRUE(code.has_value());
     EXPECT_EQ(*code, 0) << read_file(tmp.path() / "long.log");
   }
-  const nlohmann::json run = wait_for_frames(server.port, "long-wait", 5, 60s);
-  EXPECT_EQ(run["frames"], 5) << run.dump();
+  const nlohmann::json run = wait_for_frames(server.port, "long-wait", kFrames, 60s);
+  EXPECT_EQ(run["frames"], kFrames) << run.dump();
   EXPECT_EQ(run["rejected"], 0) << run.dump();
 
   {
-    auto publisher = publish_while_server_stops(run_dir, "killed", server, tmp.path() / "killed.log", {});
+    // Publication (9 s) goes on after the kill whatever the first commit took: frames are left unacknowledged.
+    auto publisher = publish_while_server_stops(run_dir, "killed", server, tmp.path() / "killed.log", "1", {});
     server.process->signal(SIGKILL);
     // DDS drops a silent reader after its lease (10 s by default).
     const std::optional<int> code = publisher->wait(60s);

@@ -121,7 +121,7 @@ TEST(FrameTransport, SubscriberReceivesEveryFrameBitExactInOrder) {
   constexpr std::uint32_t kFrames = 40;
   Publisher pub([&](dds::FramePublisher& p) {
     // Wait for the subscriber to match, so this test checks live delivery (late joining is below).
-    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k)
+    for (int k = 0; k < 100 && p.matched_readers() == 0; ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     p.publish(make_info("live"));
     for (std::uint32_t k = 0; k < kFrames; ++k) p.publish(make_frame("live", k, 2000, 4000));
@@ -217,7 +217,7 @@ TEST(FrameTransport, OverlongRunInfoStringIsRefusedByName) {
 TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {
   use_domain(13);
   Publisher pub([&](dds::FramePublisher& p) {
-    for (int k = 0; k < 100 && p.matched_frame_readers() == 0; ++k)
+    for (int k = 0; k < 100 && p.matched_readers() == 0; ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     // A raw sample whose arrays disagree, written by a second writer on the same topic.
     dds::Entity participant(dds::check(dds_create_participant(Publisher::domain(), nullptr, nullptr), "participant"));
