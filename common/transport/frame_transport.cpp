@@ -196,17 +196,28 @@ void FramePublisher::publish(const RunFrame& frame, dds_duration_t give_up) {
   }
 }
 
+namespace {
+
+// Readers a writer is matched with now, read from the writer's own match set: the one
+// dds_wait_for_acks waits on. The matched status's current_count trails it: DDS updates the status
+// after it has dropped a reader and woken the writer's waiters.
+std::uint32_t matched_now(dds_entity_t writer) {
+  const dds_return_t n = dds_get_matched_subscriptions(writer, nullptr, 0);
+  if (n < 0) throw Error("dds_get_matched_subscriptions", n);
+  return static_cast<std::uint32_t>(n);
+}
+
+}  // namespace
+
 std::uint32_t FramePublisher::matched_readers() const {
-  dds_publication_matched_status_t info{}, frames{};
-  check(dds_get_publication_matched_status(info_writer_, &info), "dds_get_publication_matched_status");
-  check(dds_get_publication_matched_status(frame_writer_, &frames), "dds_get_publication_matched_status");
-  return std::min(info.current_count, frames.current_count);
+  return std::min(matched_now(info_writer_), matched_now(frame_writer_));
 }
 
 std::uint32_t FramePublisher::lost_frame_readers() const {
   dds_publication_matched_status_t status{};
   check(dds_get_publication_matched_status(frame_writer_, &status), "dds_get_publication_matched_status");
-  return status.total_count - status.current_count;
+  const std::uint32_t now = matched_now(frame_writer_);
+  return status.total_count > now ? status.total_count - now : 0;  // a new match may not be counted yet
 }
 
 bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
