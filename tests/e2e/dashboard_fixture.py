@@ -143,9 +143,7 @@ def browser(width=1400, height=1000):
     for flag in CHROMIUM_FLAGS + extra + [f"--user-data-dir={profile}", f"--window-size={width},{height}"]:
         options.add_argument(flag)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     chromedriver = subprocess.Popen([shutil.which("chromedriver") or "/usr/bin/chromedriver", f"--port={port}"],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -161,6 +159,12 @@ def browser(width=1400, height=1000):
     driver.fnet_profile = profile
     driver.fnet_chromedriver = chromedriver
     return driver
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
 
 
 def _connectable(port):

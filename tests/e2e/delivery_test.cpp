@@ -100,7 +100,7 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
   EXPECT_EQ(run["rejected"], 0) << run.dump();
 
   {
-    // Publication (9 s) goes on after the kill whatever the first commit took: frames are left unacknowledged.
+    // Publication (9 s) goes on after the kill unless the first commit takes as long: frames are left unacknowledged.
     auto publisher = publish_while_server_stops(run_dir, "killed", server, tmp.path() / "killed.log", "1", {});
     server.process->signal(SIGKILL);
     // DDS drops a silent reader after its lease (10 s by default).

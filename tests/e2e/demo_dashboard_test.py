@@ -6,19 +6,13 @@ usage: demo_dashboard_test.py SOURCE_DIR BUILD_DIR WORK_DIR
 
 import os
 import shutil
-import socket
 import subprocess
 import sys
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from dashboard_fixture import free_port  # noqa: E402
 from websocket_client import WebSocket  # noqa: E402
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def main():
