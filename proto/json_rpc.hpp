@@ -25,6 +25,7 @@ enum Code : int {
   kNoNetwork = -32005,        // data.run, data.frame, data.reason: the frame's force network is not stored
   kUnknownEnsemble = -32006,  // data.ensemble: the ensemble named, which no announced run belongs to
   kUnauthorized = -32007,     // the server asks for a token and the connection did not present it
+  kLimitExceeded = -32008,    // data.limit: the bound passed (proto/api.md's Limits), data.value its value
 };
 
 // Thrown by method handlers; becomes an error response with this code, message and data.

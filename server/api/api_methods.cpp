@@ -21,6 +21,7 @@
 #include "server/api/block_methods.hpp"
 #include "server/api/connection_subscriptions.hpp"
 #include "server/api/ensemble_methods.hpp"
+#include "server/api/heavy_calls.hpp"
 #include "server/api/network_methods.hpp"
 #include "server/api/registry_frames.hpp"
 #include "server/api/series_methods.hpp"
@@ -199,6 +200,10 @@ class PeerSeries final : public Subscriber {
     params["subscription"] = subscription;
     return peer->send(rpc::notification("series.point", std::move(params)));
   }
+  bool ready(const std::function<void()>& resume) override {
+    const auto peer = peer_.lock();
+    return !peer || peer->wait_for_room(resume);  // a closed peer: deliver() ends the subscription
+  }
 
  private:
   const std::weak_ptr<rpc::Peer> peer_;
@@ -305,8 +310,10 @@ MethodTable method_table(ApiContext& ctx) {
 
 rpc::Handler make_api(ApiContext& ctx) {
   auto table = std::make_shared<const MethodTable>(method_table(ctx));
-  return [table, &ctx](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session,
-                       rpc::Completion done) {
+  const auto heavy_calls = std::make_shared<HeavyCalls>(
+      [&ctx](std::function<void()> work) { ctx.offload(std::move(work)); }, ctx.max_heavy_calls_per_connection);
+  return [table, heavy_calls](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session,
+                              rpc::Completion done) {
     const auto it = table->find(method);
     if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
     const Method& m = it->second;
@@ -316,14 +323,15 @@ rpc::Handler make_api(ApiContext& ctx) {
       return m.run(checked, session);
     }();
     if (json* result = std::get_if<json>(&reply)) return done(std::move(*result), nullptr);
-    ctx.offload([work = std::move(std::get<Deferred>(reply).work), declared = &m.params, done, table] {
-      try {
-        const ReadingParams reading(*declared);
-        done(work(), nullptr);
-      } catch (...) {
-        done(nullptr, std::current_exception());
-      }
-    });
+    heavy_calls->submit(session ? session->id() : 0,
+                        [work = std::move(std::get<Deferred>(reply).work), declared = &m.params, done, table] {
+                          try {
+                            const ReadingParams reading(*declared);
+                            done(work(), nullptr);
+                          } catch (...) {
+                            done(nullptr, std::current_exception());
+                          }
+                        });
   };
 }
 

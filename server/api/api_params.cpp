@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/run/run_names.hpp"
 #include "server/api/close_names.hpp"
 
 namespace fnet::server {
@@ -174,7 +175,10 @@ json describe(const StepQuery& q) { return describe(q.metric, q.dim, q.force, q.
   throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
 }
 
+// A name no run can have is said so before it is compared with any (and never echoed whole).
 [[noreturn]] void unknown_run(const Registry& registry, const std::string& run) {
+  if (const std::string problem = run_id_problem(run.size() > 80 ? run.substr(0, 80) + "..." : run); !problem.empty())
+    invalid("run", "parameter 'run': " + problem);
   std::vector<std::string> names;
   for (const RunSummary& s : registry.runs()) names.push_back(s.run_id);
   const std::vector<std::string> close = close_names(names, run);

@@ -27,11 +27,12 @@ void ConnectionSubscriptions::add(const std::shared_ptr<rpc::Peer>& session, std
     first = inserted;
     it->second.insert(id);
   }
+  session->subscriptions_changed(+1);
   // Outside the lock: on a connection already closed the hook runs at once.
   if (first) session->on_close([self = shared_from_this(), sid = session->id()] { self->release(sid); });
 }
 
-void ConnectionSubscriptions::remove(const rpc::Peer& session, std::uint64_t id) {
+void ConnectionSubscriptions::remove(rpc::Peer& session, std::uint64_t id) {
   bool found = false;
   {
     std::lock_guard lock(mutex_);
@@ -40,15 +41,18 @@ void ConnectionSubscriptions::remove(const rpc::Peer& session, std::uint64_t id)
   }
   if (!found)
     invalid("subscription", "parameter 'subscription': no " + kind_ + " " + std::to_string(id) + " on this connection");
+  session.subscriptions_changed(-1);
   end(id);
 }
 
-void ConnectionSubscriptions::drop(const rpc::Peer& session, std::uint64_t id) {
+void ConnectionSubscriptions::drop(rpc::Peer& session, std::uint64_t id) {
+  bool found = false;
   {
     std::lock_guard lock(mutex_);
     const auto it = sessions_.find(session.id());
-    if (it != sessions_.end()) it->second.erase(id);
+    found = it != sessions_.end() && it->second.erase(id) > 0;
   }
+  if (found) session.subscriptions_changed(-1);
   end(id);
 }
 

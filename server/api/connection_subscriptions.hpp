@@ -30,12 +30,13 @@ class ConnectionSubscriptions : public std::enable_shared_from_this<ConnectionSu
 
   // Error -32003 when the connection already holds `limit` of this kind.
   void check_room(const rpc::Peer& session) const;
-  // Records `id` as the connection's; the first one hooks the release of them all on close.
+  // Records `id` as the connection's; the first one hooks the release of them all on close. The
+  // connection is told how many it holds (a connection that holds one is not idle).
   void add(const std::shared_ptr<rpc::Peer>& session, std::uint64_t id);
   // Ends the connection's subscription `id`; error -32602 on 'subscription' when it holds none such.
-  void remove(const rpc::Peer& session, std::uint64_t id);
+  void remove(rpc::Peer& session, std::uint64_t id);
   // Ends `id` without the check: a subscription that failed after it was added.
-  void drop(const rpc::Peer& session, std::uint64_t id);
+  void drop(rpc::Peer& session, std::uint64_t id);
 
  private:
   void end(std::uint64_t id);

@@ -26,14 +26,6 @@ RegistryLimits registry_limits(const ServerOptions& o) {
   return limits;
 }
 
-fnet::rpc::ServerLimits rpc_limits(const ServerOptions& o) {
-  fnet::rpc::ServerLimits limits;
-  limits.max_connections = o.max_connections;
-  limits.max_line_bytes = o.max_line;
-  limits.max_queued_bytes = o.max_queued;
-  return limits;
-}
-
 // The address a browser opens: an IPv6 address in brackets.
 std::string dashboard_address(const std::string& bind, unsigned short port) {
   const std::string host = bind.find(':') == std::string::npos ? bind : "[" + bind + "]";
@@ -76,9 +68,9 @@ int main(int argc, char** argv) {
     context.offload = [&pool](std::function<void()> work) { boost::asio::post(pool, std::move(work)); };
     const fnet::rpc::Handler api = make_api(context);
     const fnet::rpc::Access access{o.token};
-    fnet::rpc::Server server(io, o.bind, o.port, api, rpc_limits(o), access);
+    fnet::rpc::Server server(io, o.bind, o.port, api, o.limits, access);
     std::optional<fnet::web::HttpServer> dashboard;
-    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, rpc_limits(o), access);
+    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, o.limits, access);
     context.connections = [&server, &dashboard] {
       return server.connections() + (dashboard ? dashboard->connections() : 0);
     };

@@ -16,6 +16,37 @@ namespace po = boost::program_options;
 
 namespace fnet::server {
 
+namespace {
+
+// A limit in seconds, set through its option.
+po::typed_value<double>* seconds(rpc::Seconds& limit) {
+  return po::value<double>()->default_value(limit.count())->notifier([&limit](double s) {
+    if (!(s > 0)) throw po::error("a timeout must be a positive number of seconds");
+    limit = rpc::Seconds(s);
+  });
+}
+
+// What one client may make the server hold (proto/api.md, Limits).
+void add_limit_options(po::options_description& options, rpc::ServerLimits& l) {
+  options.add_options()("max-connections", po::value(&l.max_connections)->default_value(l.max_connections),
+                        "concurrent API connections (TCP; the dashboard's are counted apart)")(
+      "max-line-bytes", po::value(&l.max_line_bytes)->default_value(l.max_line_bytes),
+      "longest request line (WebSocket message) accepted")(
+      "max-batch-calls", po::value(&l.max_batch_calls)->default_value(l.max_batch_calls), "calls in one batch")(
+      "max-queued-bytes", po::value(&l.max_queued_bytes)->default_value(l.max_queued_bytes),
+      "unread output per connection; an answer beyond it is replaced by an error")(
+      "max-answer-bytes", po::value(&l.max_answer_bytes)->default_value(l.max_answer_bytes),
+      "largest answer sent; a larger one is replaced by an error")(
+      "first-request-timeout", seconds(l.first_request_timeout),
+      "seconds a new connection has to send its first request (auth, with a token)")(
+      "request-timeout", seconds(l.request_timeout), "seconds from a request's first byte to its last")(
+      "idle-timeout", seconds(l.idle_timeout),
+      "seconds after which a connection with nothing in progress and no subscription is closed")(
+      "write-timeout", seconds(l.write_timeout), "seconds queued output may stay unread before the client is dropped");
+}
+
+}  // namespace
+
 std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
   ServerOptions o;
   o.threads = std::max(1u, std::thread::hardware_concurrency());
@@ -43,11 +74,9 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "2 000-particle frame, counted twice: here and in the DDS reader)")(
       "gap-timeout", po::value(&o.gap_timeout)->default_value(o.gap_timeout),
       "seconds to wait for a missing frame before skipping it")(
-      "max-connections", po::value(&o.max_connections)->default_value(o.max_connections), "concurrent API connections")(
-      "max-line-bytes", po::value(&o.max_line)->default_value(o.max_line), "longest request line accepted")(
       "max-subscriptions", po::value(&o.max_subscriptions)->default_value(o.max_subscriptions),
-      "subscriptions per connection")("max-queued-bytes", po::value(&o.max_queued)->default_value(o.max_queued),
-                                      "output queued for a client that does not read, beyond which it is dropped");
+      "subscriptions per connection");
+  add_limit_options(options, o.limits);
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, options), vm);

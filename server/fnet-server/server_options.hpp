@@ -6,6 +6,8 @@
 #include <string>
 #include <variant>
 
+#include "server/rpc/server_limits.hpp"
+
 namespace fnet::server {
 
 struct ServerOptions {
@@ -15,9 +17,9 @@ struct ServerOptions {
   std::string token;                        // asked of every connection (--token-file); empty: none
   unsigned threads = 1;                     // analysis threads, >= 1; the default is the hardware's
   int domain = 0;                           // DDS domain id
-  std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
-              max_queued = 16 << 20;
-  double gap_timeout = 30;  // seconds
+  std::size_t max_in_flight = 64, max_subscriptions = 16;
+  rpc::ServerLimits limits;  // of every API connection, TCP and WebSocket
+  double gap_timeout = 30;   // seconds
 };
 
 // The options, or the exit code when the program ends here: 0 after printing --help or

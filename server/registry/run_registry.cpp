@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iostream>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 #include <boost/asio/post.hpp>
@@ -28,13 +29,14 @@ auto Registry::locked_then_deliver(F&& f) {
   std::vector<std::shared_ptr<RunStore>> stores;
   const auto take = [&] {
     ready.swap(ready_);
+    for (const auto& outbox : ready) outbox->marked = false;
     stores.swap(stores_ready_);
     if (!ready.empty() || !stores.empty()) ++flushing_;
   };
   const auto flush = [&] {
     if (ready.empty() && stores.empty()) return;
     for (const auto& store : stores) store->write_queued();
-    for (const auto& outbox : ready) deliver(*outbox);
+    for (const auto& outbox : ready) deliver(outbox);
     std::lock_guard lock(mutex_);
     if (--flushing_ == 0) flushed_.notify_all();
   };
@@ -64,42 +66,81 @@ void Registry::store_locked(Run& run, Record&& record) {
     stores_ready_.push_back(run.store);
 }
 
-bool Registry::queue_locked(Subscription& s, const SeriesPoint& point) {
-  Outbox& o = *s.outbox;
-  std::lock_guard lock(o.mutex);
-  if (o.ended) return false;
-  if (o.pending.size() >= limits_.max_pending_points) {
-    std::cerr << "fnet-server: subscription " << o.id << " ended: " << o.pending.size()
-              << " points wait for its subscriber, which does not keep up\n";
-    o.ended = true;
-    o.pending.clear();
-    return false;
-  }
-  o.pending.push_back(point);
-  if (o.pending.size() == 1) ready_.push_back(s.outbox);
-  return true;
+void Registry::mark_locked(const std::shared_ptr<Outbox>& outbox) {
+  if (std::exchange(outbox->marked, true)) return;
+  ready_.push_back(outbox);
 }
 
-// One thread at a time delivers an outbox, in order; a point queued while it delivers is taken by
-// the same loop, since the queue's emptiness and `delivering` change under the outbox's mutex.
-void Registry::deliver(Outbox& o) {
-  std::unique_lock lock(o.mutex);
-  if (o.delivering) return;
-  o.delivering = true;
-  bool gone = false;
-  while (!o.pending.empty() && !o.ended) {
-    const SeriesPoint point = std::move(o.pending.front());
-    o.pending.pop_front();
-    lock.unlock();
-    gone = !o.subscriber->deliver(o.id, point);
-    lock.lock();
-    if (gone) {
-      o.ended = true;
-      o.pending.clear();
-    }
+std::vector<SeriesPoint> Registry::page(Outbox& o, std::size_t limit) const {
+  std::vector<SeriesPoint> out;
+  std::lock_guard lock(mutex_);
+  std::lock_guard outbox_lock(o.mutex);
+  const auto follow = [&](const std::string& rid, const Run& run) {
+    const auto cursor = o.delivered.find(rid);
+    for (auto it = cursor != o.delivered.end() ? run.committed.upper_bound(cursor->second) : run.committed.begin();
+         it != run.committed.end() && out.size() < limit; ++it)
+      out.push_back({rid, it->second->header, it->second->previous, it->second->distances, run.info.ensemble});
+  };
+  if (!o.run_id.empty()) {
+    if (const auto it = runs_.find(o.run_id); it != runs_.end()) follow(it->first, it->second);
+    return out;
   }
-  o.delivering = false;
-  lock.unlock();
+  for (auto it = runs_.begin(); it != runs_.end() && out.size() < limit; ++it) follow(it->first, it->second);
+  return out;
+}
+
+// One thread at a time delivers an outbox, a page read at a time, while its subscriber has room. A call
+// meanwhile (a commit, or the subscriber's resume) sets `again`, so the loop reads once more before
+// it lets go: nothing committed is left undelivered.
+void Registry::deliver(const std::shared_ptr<Outbox>& outbox) {
+  constexpr std::size_t kPage = 64;
+  Outbox& o = *outbox;
+  {
+    std::lock_guard lock(o.mutex);
+    if (o.ended) return;
+    if (o.delivering) {
+      o.again = true;
+      return;
+    }
+    o.delivering = true;
+  }
+  const auto resume = [this, weak = std::weak_ptr<Outbox>(outbox)] {
+    if (const auto again = weak.lock()) deliver(again);
+  };
+  const auto ended = [&o] {
+    std::lock_guard lock(o.mutex);
+    return o.ended;
+  };
+  bool gone = false;
+  while (true) {
+    {
+      std::lock_guard lock(o.mutex);
+      o.again = false;
+    }
+    // The subscriber is asked for room before each point: a page may be more than it has.
+    bool full = false;
+    while (!gone && !full && !ended() && o.subscriber->ready(resume)) {
+      const std::vector<SeriesPoint> points = page(o, kPage);
+      if (points.empty()) break;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        if (k > 0 && !o.subscriber->ready(resume)) {
+          full = true;
+          break;
+        }
+        if (!o.subscriber->deliver(o.id, points[k])) {
+          gone = true;
+          break;
+        }
+        std::lock_guard lock(o.mutex);
+        if (o.ended) break;
+        o.delivered[points[k].run_id] = points[k].header.index;
+      }
+    }
+    std::lock_guard lock(o.mutex);
+    if (o.again && !o.ended && !gone) continue;
+    o.delivering = false;
+    break;
+  }
   if (gone) unsubscribe(o.id);
 }
 
@@ -272,12 +313,9 @@ void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> fram
   }
   ++counters_.analyzed;
   recent_commits_.push_back(Clock::now());
-  const SeriesPoint point{run.run_id, frame->header, frame->previous, frame->distances, run.info.ensemble};
   run.committed[frame->header.index] = std::move(frame);
-  for (auto s = subscriptions_.begin(); s != subscriptions_.end();) {
-    const bool keep = (!s->second.run_id.empty() && s->second.run_id != run.run_id) || queue_locked(s->second, point);
-    s = keep ? std::next(s) : subscriptions_.erase(s);
-  }
+  for (const auto& [id, outbox] : subscriptions_)
+    if (outbox->run_id.empty() || outbox->run_id == run.run_id) mark_locked(outbox);
 }
 
 void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
@@ -427,20 +465,18 @@ std::uint64_t Registry::subscribe(const std::string& run_id, std::optional<std::
                                   std::shared_ptr<Subscriber> subscriber) {
   return locked_then_deliver([&] {
     const std::uint64_t id = next_subscription_++;
-    Subscription sub{run_id, std::make_shared<Outbox>()};
-    sub.outbox->id = id;
-    sub.outbox->subscriber = std::move(subscriber);
-    for (const auto& [rid, run] : runs_) {
-      if (!run_id.empty() && rid != run_id) continue;
-      for (auto it = since ? run.committed.upper_bound(*since) : run.committed.begin(); it != run.committed.end();
-           ++it) {
-        std::lock_guard lock(sub.outbox->mutex);  // the backlog, bounded only by the run's length
-        sub.outbox->pending.push_back(
-            {rid, it->second->header, it->second->previous, it->second->distances, run.info.ensemble});
-      }
-    }
-    if (!sub.outbox->pending.empty()) ready_.push_back(sub.outbox);
-    subscriptions_[id] = std::move(sub);
+    auto outbox = std::make_shared<Outbox>();
+    outbox->id = id;
+    outbox->run_id = run_id;
+    outbox->subscriber = std::move(subscriber);
+    // `since` skips the points of the frames committed so far up to it; every later commit has a
+    // higher index and is delivered, as is every frame of a run that appears later.
+    if (since)
+      for (const auto& [rid, run] : runs_)
+        if ((run_id.empty() || rid == run_id) && !run.committed.empty())
+          outbox->delivered[rid] = std::min(*since, run.committed.rbegin()->first);
+    mark_locked(outbox);  // the points committed before
+    subscriptions_[id] = std::move(outbox);
     return id;
   });
 }
@@ -451,13 +487,12 @@ void Registry::unsubscribe(std::uint64_t id) {
     std::lock_guard lock(mutex_);
     const auto it = subscriptions_.find(id);
     if (it == subscriptions_.end()) return;
-    outbox = std::move(it->second.outbox);
+    outbox = std::move(it->second);
     subscriptions_.erase(it);
   }
-  // Points not yet delivered are dropped; one being delivered at this moment may still arrive.
+  // A point being delivered at this moment may still arrive; none after it.
   std::lock_guard lock(outbox->mutex);
   outbox->ended = true;
-  outbox->pending.clear();
 }
 
 std::size_t Registry::subscriptions() const {

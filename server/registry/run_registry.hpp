@@ -63,7 +63,6 @@ struct Counters {
 struct RegistryLimits {
   std::chrono::milliseconds gap_timeout{30000};  // a missing frame is skipped after this
   std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
-  std::size_t max_pending_points = 100000;       // a subscription's outbox beyond this ends it
 };
 
 class Registry {
@@ -121,9 +120,9 @@ class Registry {
   // members are seen at one instant. Empty when no run names it.
   std::vector<MemberRun> ensemble_members(const std::string& ensemble) const;
 
-  // Registers a subscriber (subscriber.hpp). It first receives every committed point of `run_id`
-  // (of every run when empty) with frame index > since, then the points committed after, through
-  // one outbox: nothing is missed or repeated between the two.
+  // Registers a subscriber (subscriber.hpp). It receives the committed points of `run_id` (of
+  // every run when empty) with frame index > since, then every point committed after, once each
+  // and in frame order per run, as fast as the subscriber has room for them.
   std::uint64_t subscribe(const std::string& run_id, std::optional<std::uint32_t> since,
                           std::shared_ptr<Subscriber> subscriber);
   void unsubscribe(std::uint64_t id);
@@ -146,29 +145,29 @@ class Registry {
     StoreTime known_since = store_time_now();
     std::shared_ptr<RunStore> store;  // never null
   };
-  // A subscription's queue of points not yet delivered; its mutex orders pushes against the
-  // delivery, which one thread at a time performs.
+  // A subscription's place in the runs it follows. Its points are read from the committed frames
+  // when they are delivered, a page at a time, never copied ahead: a subscription holds no backlog,
+  // whatever the length of the runs or the pace of its subscriber.
   struct Outbox {
     std::uint64_t id = 0;
+    std::string run_id;  // empty: every run
     std::shared_ptr<Subscriber> subscriber;
-    std::mutex mutex;
-    std::deque<SeriesPoint> pending;
-    bool delivering = false, ended = false;
-  };
-  struct Subscription {
-    std::string run_id;
-    std::shared_ptr<Outbox> outbox;
+    bool marked = false;  // in ready_; under the registry's lock
+    std::mutex mutex;     // guards what follows; taken after the registry's lock, never before it
+    std::map<std::string, std::uint32_t, std::less<>> delivered;  // per run: the last frame delivered
+    bool delivering = false, again = false, ended = false;
   };
 
   Run& run_locked(const std::string& run_id);
-  // Queues a point in a subscription's outbox, marked for delivery; ends a subscription whose
-  // outbox is full. Returns whether the subscription goes on.
-  bool queue_locked(Subscription& s, const SeriesPoint& point);
+  // Marks an outbox for delivery once the lock is released.
+  void mark_locked(const std::shared_ptr<Outbox>& outbox);
+  // The next points of a subscription, at most `limit`, in frame order per run.
+  std::vector<SeriesPoint> page(Outbox& outbox, std::size_t limit) const;
   // Runs `f` under the lock; then, off the lock, writes out the stores it queued writes to and
   // delivers the points it queued (a subscriber sees a point once its frame is in the store).
   template <class F>
   auto locked_then_deliver(F&& f);
-  void deliver(Outbox& outbox);
+  void deliver(const std::shared_ptr<Outbox>& outbox);
   // Runs jobs on the pool; each hands its outcome back to the run's pipeline under the lock.
   void post_locked(const Run& run, DiagramJob job);
   void post_locked(const Run& run, std::vector<DistanceJob> jobs);
@@ -191,8 +190,8 @@ class Registry {
   std::function<void(const RunInfo&)> announcement_listener_;
   mutable std::mutex mutex_;
   std::map<std::string, Run> runs_;
-  std::map<std::uint64_t, Subscription> subscriptions_;
-  std::vector<std::shared_ptr<Outbox>> ready_;           // outboxes with points queued since the last delivery
+  std::map<std::uint64_t, std::shared_ptr<Outbox>> subscriptions_;
+  std::vector<std::shared_ptr<Outbox>> ready_;           // outboxes with points committed since the last delivery
   std::vector<std::shared_ptr<RunStore>> stores_ready_;  // stores with writes queued since then
   std::size_t flushing_ = 0;  // threads writing out stores and delivering points after the lock
   std::condition_variable flushed_;

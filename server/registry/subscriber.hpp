@@ -3,14 +3,14 @@
 // TCP client is one implementation, an ensemble's curve another; a new transport adds its own
 // without a change to the registry.
 //
-// Each subscription has an outbox: the registry queues the points it commits there under its
-// lock (a copy, nothing more), and delivers them in commit order after releasing it, so that no
-// subscriber's work (building JSON, sending) runs under the lock every run shares. An outbox that
-// grows beyond RegistryLimits::max_pending_points (its subscriber does not keep up) ends the
-// subscription, with the reason logged; the others are never delayed by it.
+// The registry delivers the points it commits after releasing its lock, so that no subscriber's
+// work (building JSON, sending) runs under the lock every run shares; it reads them from the
+// committed frames a page at a time, as fast as the subscriber has room (ready), so a subscriber
+// that does not keep up costs no memory and never delays the others.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -34,6 +34,12 @@ class Subscriber {
   // thread, never under the registry's lock, never twice at once for one subscription. Must not
   // block. Returns false when the subscriber is gone: the subscription ends.
   virtual bool deliver(std::uint64_t subscription, const SeriesPoint& point) = 0;
+  // Whether it has room for a page of points now; if not, it calls `resume` (from any thread, off
+  // the registry's lock) once it has, and the delivery goes on from where it stopped.
+  virtual bool ready(const std::function<void()>& resume) {
+    (void)resume;
+    return true;
+  }
 };
 
 }  // namespace fnet::server

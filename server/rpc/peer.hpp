@@ -16,13 +16,19 @@ namespace fnet::rpc {
 class Peer {
  public:
   virtual ~Peer() = default;
-  // Queues one JSON message; thread-safe and never blocks. A peer whose unread output exceeds its
-  // transport's bound is dropped. Returns false once the peer is closed.
+  // Queues one JSON message; thread-safe and never blocks. An answer the transport's bounds do not
+  // admit is replaced by an error that names the bound. Returns false once the peer is closed.
   virtual bool send(const json& message) = 0;
   // Unique among the peers of this process.
   virtual std::uint64_t id() const = 0;
   // Called once when the peer ends; at once when it has ended.
   virtual void on_close(std::function<void()> fn) = 0;
+  // For what is sent unasked (a subscription's points): true when the peer has room for more now;
+  // otherwise false, and `resume` is called once when it has (never after the peer has closed;
+  // a later call replaces an earlier `resume`). Thread-safe; `resume` runs on the peer's thread.
+  virtual bool wait_for_room(std::function<void()> resume) = 0;
+  // The subscriptions the peer holds went up or down by `delta`: a peer that holds one is not idle.
+  virtual void subscriptions_changed(int delta) = 0;
 };
 
 // How a call ends: its result, or the exception it ended with (rpc::Error for the caller's

@@ -3,6 +3,8 @@
 #include <array>
 #include <istream>
 #include <string>
+#include <string_view>
+#include <utility>
 
 namespace fnet::rpc {
 namespace asio = boost::asio;
@@ -13,6 +15,32 @@ TcpPeer::TcpPeer(tcp::socket socket, Strand strand, const ServerLimits& limits, 
     : Connection(std::move(strand), "\n", limits, handler, access, false, std::move(on_end)),
       socket_(std::move(socket)),
       input_(limits.max_line_bytes + 1) {}
+
+namespace {
+
+// "POST / HTTP/1.1": a browser or an HTTP client, which this port does not speak. A page on any
+// origin may make the browser send one (a form or a fetch), so it is answered in HTTP and closed
+// before any line of it could run as a call.
+bool http_request_line(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const std::size_t method_end = line.find(' ');
+  if (method_end < 3 || method_end > 10 || method_end == std::string_view::npos) return false;
+  for (std::size_t k = 0; k < method_end; ++k)
+    if (line[k] < 'A' || line[k] > 'Z') return false;
+  const std::size_t version = line.rfind(' ');
+  return version > method_end + 1 && line.substr(version + 1).rfind("HTTP/", 0) == 0;
+}
+
+std::string http_refusal() {
+  const std::string body =
+      "This port speaks newline-delimited JSON-RPC 2.0, not HTTP (proto/api.md); the dashboard is on "
+      "fnet-server's --http-port.\n";
+  return "HTTP/1.1 400 Bad Request\r\nContent-Type: text/plain; charset=utf-8\r\nConnection: close\r\n"
+         "Content-Length: " +
+         std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+}  // namespace
 
 void TcpPeer::read_next() {
   asio::async_read_until(socket_, input_, '\n',
@@ -27,6 +55,8 @@ void TcpPeer::read_next() {
                            std::string line(n, '\0');
                            std::istream(&self->input_).read(line.data(), static_cast<std::streamsize>(n));
                            line.pop_back();  // '\n'
+                           if (std::exchange(self->first_line_, false) && http_request_line(line))
+                             return self->refuse_text(http_refusal());
                            self->take_message(line);
                          }));
 }

@@ -31,12 +31,14 @@ class TcpPeer final : public Connection {
   void read_next() override;
   void write(const std::string& text) override;
   bool is_open() const override { return socket_.is_open(); }
+  bool partial_input() const override { return input_.size() > 0; }
   void finish() override;
   void close_transport() override;
   void drain(const std::shared_ptr<boost::asio::steady_timer>& timer);
 
   boost::asio::ip::tcp::socket socket_;
   boost::asio::streambuf input_;
+  bool first_line_ = true;
 };
 
 class Server {

@@ -103,14 +103,19 @@ void HttpConnection::on_request(beast::error_code ec) {
     return send(std::move(r));
   }
   Request request = parser_->release();
+  // The client's "Connection: close" (or HTTP/1.0 without keep-alive) ends the connection after the answer.
+  const auto reply = [this, keep = request.keep_alive()](Response r) {
+    r.keep_alive(keep && r.keep_alive());
+    send(std::move(r));
+  };
   const Admission admission = admit(request, access_, port_);
   if (admission.verdict == Admission::Verdict::refuse)
-    return send(error(admission.status, request.version(), admission.message));
+    return reply(error(admission.status, request.version(), admission.message));
   if (admission.verdict == Admission::Verdict::redirect) {
     Response r = error(http::status::see_other, request.version(), "see " + admission.location);
     r.set(http::field::location, admission.location);
     r.set(http::field::set_cookie, admission.set_cookie);
-    return send(std::move(r));
+    return reply(std::move(r));
   }
   if (beast::websocket::is_upgrade(request) && path_of(request.target()) == kRpcPath) {
     stream_.expires_never();
@@ -119,7 +124,7 @@ void HttpConnection::on_request(beast::error_code ec) {
     ws->accept(std::move(request));
     return;
   }
-  send(answer(request));
+  reply(answer(request));
 }
 
 void HttpConnection::send(Response response) {

@@ -25,7 +25,7 @@ void WebSocketPeer::accept(beast::http::request<beast::http::string_body> upgrad
   asio::post(strand_, [self = self(), request] {
     self->ws_.async_accept(*request, asio::bind_executor(self->strand_, [self, request](beast::error_code ec) {
       if (ec) return self->close();
-      self->read_next();
+      self->start();
     }));
   });
 }

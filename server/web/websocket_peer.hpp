@@ -30,6 +30,7 @@ class WebSocketPeer final : public rpc::Connection {
   void read_next() override;
   void write(const std::string& text) override;
   bool is_open() const override;
+  bool partial_input() const override { return input_.size() > 0; }
   void finish() override;
   void close_transport() override;
 

@@ -62,8 +62,8 @@ class Api:
     """One TCP connection to the JSON-RPC API; notifications kept with the time they came."""
 
     def __init__(self, port):
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=120)
-        self.file = self.sock.makefile("r")
+        self.port = port
+        self.sock = self.file = None  # connected at the first call: the server closes a silent connection
         self.next_id = 1
         self.notifications = []  # (time.time() when read, message)
 
@@ -74,6 +74,9 @@ class Api:
         return message
 
     def call(self, method, params=None):
+        if self.sock is None:
+            self.sock = socket.create_connection(("127.0.0.1", self.port), timeout=120)
+            self.file = self.sock.makefile("r")
         request_id = self.next_id
         self.next_id += 1
         self.sock.sendall((json.dumps({"jsonrpc": "2.0", "id": request_id, "method": method,

@@ -470,6 +470,32 @@ TEST(Service, SubscriberGetsLivePointsAndWhatItMissedAfterReconnecting) {
   pub->stop();
 }
 
+// A backlog many times the connection's output bound reaches a client that reads, whole and in
+// order: the points are sent as the client reads them, never queued in one go.
+TEST(Service, ASubscriberThatReadsGetsABacklogFarPastItsOutputBound) {
+  testing::TempDir tmp;
+  constexpr int kFrames = 200;
+  std::vector<int> source;
+  for (int k = 0; k < kFrames; ++k) source.push_back(k % 11);
+  const fs::path run_dir = lammps_run(tmp.path() / "csv", source);
+  ASSERT_EQ(store_run(run_dir, "long", tmp.path() / "data", tmp.path() / "store.log"), 0);
+  ServerProcess server =
+      start_server(tmp.path() / "data", 226, tmp.path() / "server.log", {"--max-queued-bytes", "32768"});
+  LineConnection c(server.port);
+  const json subscribed = c.call("series.subscribe", {{"run", "long"}});
+  ASSERT_TRUE(subscribed.contains("result")) << subscribed.dump();
+  std::vector<std::uint32_t> frames;
+  for (const json& n : c.notifications) frames.push_back(n["params"]["frame"]);
+  while (frames.size() < static_cast<std::size_t>(kFrames)) {
+    const auto n = c.next(30s);
+    ASSERT_TRUE(n) << "the backlog stopped after " << frames.size() << " points";
+    ASSERT_EQ((*n)["method"], "series.point") << n->dump();
+    frames.push_back((*n)["params"]["frame"]);
+  }
+  for (int k = 0; k < kFrames; ++k) EXPECT_EQ(frames[k], static_cast<std::uint32_t>(k));
+  EXPECT_TRUE(c.call("runs.list", json::object()).contains("result")) << "the connection did not go on";
+}
+
 TEST(Service, BrokenDdsConfigurationFailsAtStartNamingIt) {
   testing::TempDir tmp;
   const fs::path broken = tmp.path() / "broken.xml";
@@ -522,6 +548,24 @@ TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
   EXPECT_EQ(server.wait(60s), 2);
   const std::string text = read_file(tmp.path() / "server.log");
   EXPECT_NE(text.find("--bind 'localhost:7707'"), std::string::npos) << text;
+}
+
+// proto/api.md's Limits table against the server: every flag it names is an option of fnet-server.
+TEST(Service, TheLimitsTableNamesTheServersOptions) {
+  testing::TempDir tmp;
+  Process help(FNET_SERVER, {"--help"}, tmp.path() / "help.log", dds_environment());
+  const std::string options = help.read_rest();
+  EXPECT_EQ(help.wait(60s), 0);
+  const std::string doc = read_file(fs::path(FNET_SOURCE_DIR) / "proto" / "api.md");
+  const std::size_t begin = doc.find("## Limits\n"), end = doc.find("\n## ", begin + 1);
+  ASSERT_NE(begin, std::string::npos);
+  const std::string table = doc.substr(begin, end - begin);
+  const std::regex flag("`(--[a-z-]+)`");
+  std::set<std::string> flags;
+  for (auto it = std::sregex_iterator(table.begin(), table.end(), flag); it != std::sregex_iterator(); ++it)
+    flags.insert((*it)[1]);
+  EXPECT_GE(flags.size(), 9u);
+  for (const std::string& f : flags) EXPECT_NE(options.find("  " + f + " "), std::string::npos) << f << " is no option";
 }
 
 // A three-frame run "demo" of ensemble "demo-ens", served: what proto/api.md's examples are written against.

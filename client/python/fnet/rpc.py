@@ -20,6 +20,7 @@ DEFAULT_PORT = 7707
 DEFAULT_DIM = 1  # the diagram a request means when it names none: proto/api.md's `dim` default
 UNKNOWN_RUN = -32001  # proto/api.md's error code of an unknown run
 UNAUTHORIZED = -32007  # proto/api.md's error code of a connection that did not present the token
+LIMIT_EXCEEDED = -32008  # proto/api.md's error code of a limit passed (data.limit names it)
 
 
 class RpcError(Exception):
@@ -91,6 +92,9 @@ class _Connection:
             if "id" not in message:  # a notification: a subscription's backlog may come first
                 self.notifications.append(message)
                 continue
+            if message["id"] is None and message.get("error", {}).get("code") == LIMIT_EXCEEDED:
+                # The server's last words before it closes the connection (an idle one, say).
+                raise ConnectionError(message["error"].get("message", "closed by fnet-server"))
             if message["id"] != request_id:
                 raise RpcError(-32603, f"answer to request {message['id']} while waiting for {request_id}", message)
             if "error" in message:
@@ -277,12 +281,22 @@ class Client:
 
     def call(self, method, params=None):
         """Any method by name, with its params as a dict; the raw result."""
-        if self._conn is None:
+        reused = self._conn is not None
+        if not reused:
             self._conn = _Connection(self.host, self.port, self.timeout, self.token)
         try:
             return self._conn.call(method, params)
         except (OSError, ConnectionError):
-            self.close()  # reconnect on the next call
+            self.close()
+            if not reused:
+                raise
+        # The server closes a connection left idle (proto/api.md, Limits): once more, on a new one.
+        # Every method a Client calls only reads, so asking twice is safe.
+        self._conn = _Connection(self.host, self.port, self.timeout, self.token)
+        try:
+            return self._conn.call(method, params)
+        except (OSError, ConnectionError):
+            self.close()
             raise
 
     # -- runs and the server ------------------------------------------------------------------

@@ -110,11 +110,11 @@ class Server:
         return self.data_dir / f"{run}.h5"
 
 
-def start_server(processes, domain, name="server", data=None):
-    """fnet-server on `domain`, its stores in `data` (default a folder of its own)."""
+def start_server(processes, domain, name="server", data=None, options=()):
+    """fnet-server on `domain`, its stores in `data` (default a folder of its own), with `options`."""
     data = data or processes.tmp / f"{name}-data"
     p = processes.start([binary("FNET_SERVER"), "--data-dir", data, "--port", "0", "--domain", domain, "--threads",
-                         "2"], f"{name}.log")
+                         "2", *options], f"{name}.log")
     line = p.read_line()
     m = re.search(r":(\d+) ", line)
     if not m:

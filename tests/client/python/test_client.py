@@ -2,7 +2,9 @@
 by fnet-analyze): every array it returns is what the server answered (raw JSON through call()) and
 what the server stored (its HDF5 store, read with fnet.store)."""
 
+import json
 import math
+import socket
 import threading
 import time
 
@@ -10,7 +12,7 @@ import numpy as np
 import pytest
 
 import fnet
-from conftest import LAMMPS_FRAMES, publish_lammps, wait_for
+from conftest import LAMMPS_FRAMES, publish_lammps, start_server, wait_for
 
 DOMAIN = 90
 RUN = "lammps"
@@ -182,3 +184,21 @@ def test_unknown_run_of_a_subscription_names_the_close_runs(client):
     assert 1.5 <= time.monotonic() - began < 30
     assert e.value.code == -32001 and e.value.data == {"run": "zzz", "close": []}  # nothing close: the server's error
     assert client.status()["subscriptions"] == 0
+
+
+def test_a_client_goes_on_after_the_server_closed_its_idle_connection(processes):
+    idle = start_server(processes, DOMAIN, name="idle", options=["--idle-timeout", "0.5"])
+    # The server closes an idle connection, saying why in its last line.
+    with socket.create_connection(("127.0.0.1", idle.port), timeout=10) as raw:
+        raw.sendall(b'{"jsonrpc":"2.0","id":1,"method":"runs.list"}\n')
+        received = b""
+        while chunk := raw.recv(65536):
+            received += chunk
+    last = json.loads(received.splitlines()[-1])
+    assert last["id"] is None and last["error"]["code"] == fnet.rpc.LIMIT_EXCEEDED
+    assert last["error"]["data"]["limit"] == "idle_timeout"
+    # A Client left idle as long reconnects on its next call.
+    with idle.client() as c:
+        first = c.status()["uptime_seconds"]
+        time.sleep(1.5)
+        assert c.status()["uptime_seconds"] > first

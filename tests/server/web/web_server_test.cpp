@@ -107,6 +107,13 @@ TEST(WebServer, KeepsAConnectionOpenForTheNextRequest) {
   }
 }
 
+TEST(WebServer, ClosesTheConnectionWhenTheRequestSaysClose) {
+  WebFixture f;
+  const std::string answer = raw_exchange(f.port(), "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(answer.rfind("HTTP/1.1 200 OK\r\n", 0), 0u) << answer.substr(0, 200);
+  EXPECT_NE(answer.find("Connection: close\r\n"), std::string::npos) << "the answer did not say it closes";
+}
+
 TEST(WebServer, CarriesJsonRpcOverAWebSocket) {
   WebFixture f;
   WsClient ws(f.port());
@@ -140,6 +147,17 @@ TEST(WebServer, MalformedAndBinaryMessagesGetTheApisErrorsAndTheConnectionStays)
   EXPECT_EQ((*reply)["error"]["code"], rpc::kInvalidRequest);
   EXPECT_NE((*reply)["error"]["message"].get<std::string>().find("binary"), std::string::npos);
   EXPECT_EQ(ws.call("echo", {{"still", true}})["result"]["still"], true);
+  // A number past a double and nesting 400 000 deep (in under 1 MiB): errors, and the tab goes on.
+  ws.send(R"({"jsonrpc":"2.0","id":3,"method":"echo","params":{"x":1e999}})");
+  reply = ws.next();
+  ASSERT_TRUE(reply) << "the server died";
+  EXPECT_EQ((*reply)["error"]["code"], rpc::kParseError);
+  ws.send(R"({"jsonrpc":"2.0","id":4,"method":"echo","params":)" + std::string(400000, '[') + std::string(400000, ']') +
+          "}");
+  reply = ws.next();
+  ASSERT_TRUE(reply) << "the server died";
+  EXPECT_EQ((*reply)["error"]["data"]["limit"], "max_json_depth");
+  EXPECT_EQ(ws.call("echo", {{"still", 2}})["result"]["still"], 2);
 }
 
 TEST(WebServer, AnOversizedMessageGetsAnErrorThenTheConnectionCloses) {
@@ -162,6 +180,7 @@ TEST(WebServer, AnOversizedMessageGetsAnErrorThenTheConnectionCloses) {
 TEST(WebServer, ATabThatStopsReadingIsDroppedAndNeverDelaysTheOthers) {
   rpc::ServerLimits limits;
   limits.max_queued_bytes = 1 << 20;
+  limits.write_timeout = rpc::Seconds(1);
   WebFixture f(limits);
   WsClient stalled(f.port());
   WsClient reader(f.port());
