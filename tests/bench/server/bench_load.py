@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""fnet-server under load: many clients mixing the methods and subscriptions while runs stream.
+
+usage: bench_load.py BUILD_DIR [--clients 500] [--subscribers 100] [--runs 4] [--frames 40]
+                     [--particles 2000] [--rate 2] [--domain 231] [--check]
+
+fnet-simd records one compression of PARTICLES disks (--no-dds, CSV export); RUNS publishers
+(fnet-analyze publish --rate RATE) replay it onto DDS as RUNS runs streaming at once to a fresh
+fnet-server. Meanwhile CLIENTS connections are open: SUBSCRIBERS of them subscribe (half to one
+run, half to every run) and read every point; the others loop over runs.list, run.get, series.get,
+diagram.get, distance.get and server.status until the runs end. Printed: per method, calls, p50,
+p99 and max round trip (ms) and errors; the server's peak RSS; whether every subscriber got every
+frame of its runs once, in order. --check: exit 1 unless every subscriber did and no call failed.
+"""
+import argparse, asyncio, json, os, re, shutil, statistics, subprocess, sys, tempfile, time
+
+from fnet_service import DDS_ENV as env, Binaries
+
+p = argparse.ArgumentParser()
+p.add_argument("build")
+p.add_argument("--clients", type=int, default=500)
+p.add_argument("--subscribers", type=int, default=100)
+p.add_argument("--runs", type=int, default=4)
+p.add_argument("--frames", type=int, default=40)
+p.add_argument("--particles", type=int, default=2000)
+p.add_argument("--rate", type=float, default=2)
+p.add_argument("--domain", type=int, default=231)
+p.add_argument("--check", action="store_true")
+a = p.parse_args()
+
+bins = Binaries(a.build)
+work = tempfile.mkdtemp(prefix="fnet-bench-load-")
+RUNS = [f"load-{k}" for k in range(a.runs)]
+CHEAP = ("runs.list", "run.get", "series.get", "diagram.get", "server.status")
+
+
+class Connection:
+    """One JSON-RPC connection: calls matched by id, notifications handed to `on_point`."""
+
+    def __init__(self, reader, writer, on_point=None):
+        self.reader, self.writer, self.on_point = reader, writer, on_point
+        self.next_id, self.waiting = 1, {}
+        self.task = asyncio.ensure_future(self.read())
+
+    @classmethod
+    async def open(cls, port, on_point=None):
+        reader, writer = await asyncio.open_connection("127.0.0.1", port, limit=1 << 24)
+        return cls(reader, writer, on_point)
+
+    async def read(self):
+        while line := await self.reader.readline():
+            m = json.loads(line)
+            if "id" not in m:
+                if self.on_point:
+                    self.on_point(m)
+            elif m["id"] in self.waiting:
+                self.waiting.pop(m["id"]).set_result(m)
+        for f in self.waiting.values():
+            f.set_exception(ConnectionError("closed"))
+
+    async def call(self, method, params=None):
+        request_id, self.next_id = self.next_id, self.next_id + 1
+        future = asyncio.get_running_loop().create_future()
+        self.waiting[request_id] = future
+        self.writer.write((json.dumps({"jsonrpc": "2.0", "id": request_id, "method": method,
+                                       "params": params or {}}) + "\n").encode())
+        await self.writer.drain()
+        return await future
+
+
+def peak_rss_mb(pid):
+    with open(f"/proc/{pid}/status") as f:
+        return int(re.search(r"VmHWM:\s+(\d+)", f.read()).group(1)) / 1024
+
+
+async def main(port, server_pid):
+    latencies = {m: [] for m in (*CHEAP, "distance.get")}
+    errors = {m: 0 for m in latencies}
+    points = [dict() for _ in range(a.subscribers)]  # per subscriber: run -> frames in arrival order
+    done = asyncio.Event()
+
+    def recorder(k):
+        def on_point(m):
+            if m.get("method") == "series.point":
+                points[k].setdefault(m["params"]["run"], []).append(m["params"]["frame"])
+        return on_point
+
+    subscribers = []
+    for k in range(a.subscribers):
+        c = await Connection.open(port, recorder(k))
+        params = {"run": RUNS[k % len(RUNS)]} if k % 2 == 0 else {}
+        while "error" in (r := await c.call("series.subscribe", params)):  # the run exists at its first frame
+            await asyncio.sleep(0.2)
+        subscribers.append(c)
+
+    async def caller(k):
+        c = await Connection.open(port)
+        step = 0
+        while not done.is_set():
+            run = RUNS[(k + step) % len(RUNS)]
+            method = (*CHEAP, "distance.get")[step % 6]
+            params = {"runs.list": {}, "server.status": {}, "run.get": {"run": run},
+                      "series.get": {"run": run, "metric": "wasserstein2"},
+                      "diagram.get": {"run": run, "frame": 0},
+                      "distance.get": {"run": run, "frame": 1, "other_frame": 0, "metric": "wasserstein2"}}[method]
+            t = time.perf_counter()
+            r = await c.call(method, params)
+            if "error" in r and r["error"]["code"] not in (-32001, -32002):  # runs and frames not there yet
+                errors[method] += 1
+            else:
+                latencies[method].append(1e3 * (time.perf_counter() - t))
+            step += 1
+            await asyncio.sleep(0.05)
+        c.writer.close()
+
+    callers = [asyncio.ensure_future(caller(k)) for k in range(a.clients - a.subscribers)]
+    watcher = await Connection.open(port)
+    while True:
+        runs = {r["run"]: r for r in (await watcher.call("runs.list"))["result"]["runs"]}
+        if all(r in runs and runs[r]["frames"] + runs[r]["rejected"] >= a.frames and runs[r]["pending"] == 0
+               for r in RUNS):
+            break
+        await asyncio.sleep(0.5)
+    await asyncio.sleep(2)  # the last points reach every subscriber
+    done.set()
+    await asyncio.gather(*callers)
+    rss = peak_rss_mb(server_pid)
+
+    expected = list(range(a.frames))
+    complete = 0
+    for k, got in enumerate(points):
+        want = [RUNS[k % len(RUNS)]] if k % 2 == 0 else RUNS
+        if all(got.get(r) == expected for r in want) and set(got) == set(want):
+            complete += 1
+    print(f"fnet-server under load: {a.clients} connections ({a.subscribers} subscribers), {a.runs} runs of "
+          f"{a.frames} frames of {a.particles} disks streaming at {a.rate} frames/s each; {os.cpu_count()} cores "
+          "shared with the clients and the publishers")
+    print(f"{'method':14s} {'calls':>7s} {'p50 ms':>8s} {'p99 ms':>8s} {'max ms':>8s} {'errors':>7s}")
+    for m, lat in latencies.items():
+        lat.sort()
+        if lat:
+            print(f"{m:14s} {len(lat):7d} {statistics.median(lat):8.2f} {lat[int(0.99 * (len(lat) - 1))]:8.2f} "
+                  f"{lat[-1]:8.2f} {errors[m]:7d}")
+    print(f"server peak RSS: {rss:.1f} MB")
+    print(f"subscribers with every frame of their runs, once, in order: {complete} / {a.subscribers}")
+    return complete == a.subscribers and not any(errors.values())
+
+
+ok = False
+procs = []
+try:
+    csv = os.path.join(work, "csv")
+    box = 50 * (a.particles / 2000) ** 0.5
+    subprocess.run([bins.simd, "--particles", str(a.particles), "--box", f"{box:.4f}", "--compression-speed", "1e-3",
+                    "--frames", str(a.frames), "--seed", "5", "--quiet", "--no-dds", "--export-csv", csv],
+                   check=True, env=env)
+    server = subprocess.Popen([bins.server, "--data-dir", os.path.join(work, "data"), "--port", "0", "--domain",
+                               str(a.domain), "--threads", "2", "--max-connections", str(a.clients + 16)],
+                              stdout=subprocess.PIPE, stderr=open(os.path.join(work, "server.log"), "w"), env=env,
+                              text=True)
+    procs.append(server)
+    port = int(re.search(r":(\d+) ", server.stdout.readline()).group(1))
+    for run in RUNS:
+        procs.append(subprocess.Popen([bins.analyze, "publish", "--csv-dir", csv, "--run-id", run, "--domain",
+                                       str(a.domain), "--rate", str(a.rate), "--wait-for-reader", "60"], env=env,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    ok = asyncio.run(main(port, server.pid))
+finally:
+    for proc in reversed(procs):
+        proc.terminate()
+        proc.wait()
+    shutil.rmtree(work, ignore_errors=True)
+sys.exit(0 if ok or not a.check else 1)
