@@ -18,6 +18,9 @@ struct ServerOptions {
   std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
               max_queued = 16 << 20;
   double gap_timeout = 30;  // seconds
+  double store_retry = 2;   // seconds between retries of a store that cannot be written
+  double store_idle = 60;   // seconds without writes after which a run's store is closed
+  double stop_timeout = 5;  // seconds a stop waits for the analysis in progress
 };
 
 // The options, or the exit code when the program ends here: 0 after printing --help or
