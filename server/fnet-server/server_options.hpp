@@ -19,7 +19,7 @@ struct ServerOptions {
               max_queued = 16 << 20;
   double gap_timeout = 30;  // seconds
   double store_retry = 2;   // seconds between retries of a store that cannot be written
-  double store_idle = 60;   // seconds without writes after which a run's store is closed
+  double store_idle = 600;  // seconds without writes after which a run's store is closed
   double stop_timeout = 5;  // seconds a stop waits for the analysis in progress
 };
 

@@ -73,7 +73,7 @@ struct RegistryLimits {
   std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
   std::size_t max_pending_points = 100000;       // a subscription's outbox beyond this ends it
   std::chrono::milliseconds store_retry{2000};   // a store at fault is retried this often
-  std::chrono::milliseconds store_idle{60000};   // a store written to no more for this long is closed
+  std::chrono::milliseconds store_idle{600000};  // a store written to no more for this long is closed
 };
 
 class Registry {

@@ -221,7 +221,9 @@ TEST(StoreFault, AtItsFileLimitTheServerAnswersBacksOffAndFailsNewRunsUntilDescr
   const double cpu_before = cpu_seconds(server.process->pid());
   std::this_thread::sleep_for(3s);
   const double cpu = cpu_seconds(server.process->pid()) - cpu_before;
-  EXPECT_LT(cpu, 0.5) << "the server spins at its file limit: " << cpu << " s of CPU in 3 s";
+  // Idle, it wakes a few times a second (ingest, store tending): a spinning accept loop takes far
+  // more, even on a loaded machine (0.44 s in 3 s measured with two builds running).
+  EXPECT_LT(cpu, 0.15) << "the server spins at its file limit: " << cpu << " s of CPU in 3 s";
   EXPECT_TRUE(kept.call("runs.list", json::object()).contains("result"));
 
   // A new run cannot open its store: a store fault, said to the API and to its publisher.
