@@ -402,8 +402,19 @@ int cmd_status(Connection& rpc, const std::vector<std::string>& args) {
               s["frames_per_second"].get<double>(), s["lag"]["frames_in_flight"].get<std::size_t>(),
               s["lag"]["oldest_pending_seconds"].get<double>());
   for (const json& reason : s["rejections"]) std::cout << "  rejected: " << reason.get<std::string>() << "\n";
+  // A run whose store takes no writes is failed until it does: unhealthy, like a stopped ingest.
+  const json faults = s.contains("stores") ? s["stores"]["faults"] : json::array();
+  if (s.contains("stores")) std::printf("stores: %zu open\n", s["stores"]["open"].get<std::size_t>());
+  for (const json& fault : faults)
+    std::printf("  store fault: run %s: %s (%zu frame(s) wait for the store)\n",
+                fault["run"].get<std::string>().c_str(), fault["reason"].get<std::string>().c_str(),
+                fault["unstored"].get<std::size_t>());
   if (ingest != "running") {
     std::cerr << "fnetctl status: the server's DDS ingest is " << ingest << ": no new frames arrive\n";
+    return kServerError;
+  }
+  if (!faults.empty()) {
+    std::cerr << "fnetctl status: " << faults.size() << " run(s) cannot be stored: their frames wait in memory\n";
     return kServerError;
   }
   return kOk;

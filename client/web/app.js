@@ -101,6 +101,12 @@ function renderRuns() {
         td.title = "complete: every planned frame is accounted for";
       }
     });
+    // A store fault fails the run until the store takes writes again: its name says so.
+    if (r.store_fault) {
+      row.cells[0].textContent += " · store fault";
+      row.cells[0].className = "fault";
+      row.cells[0].title = `not stored: ${r.store_fault}`;
+    }
     row.onclick = () => select("run", r.run);
   }
 }

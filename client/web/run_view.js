@@ -144,7 +144,7 @@ export class RunView {
       this.draw();
     }
     const parts = [
-      `${run.frames}${run.planned_frames !== undefined ? " of " + run.planned_frames : ""} frames analyzed`,
+      `${run.frames}${run.planned_frames !== undefined ? " of " + run.planned_frames : ""} frames analyzed and stored`,
       complete ? "complete" : run.seconds_since_last_frame < 30 ? "running" : "idle",
       `ρ ${formatNumber(run.rho, 4)}`, `Z ${formatNumber(run.z, 3)}`,
       run.rho_j === null ? "ρ_J not reached (Z < 3)" : `ρ_J ${formatNumber(run.rho_j, 4)}`,
@@ -152,7 +152,9 @@ export class RunView {
     if (run.rejected) parts.push(`${run.rejected} rejected`);
     if (run.skipped) parts.push(`${run.skipped} skipped`);
     if (run.dimension === 3) parts.push("3D frames, drawn as their xy projection");
+    if (run.store_fault) parts.unshift(`store fault: ${run.unstored} settled frame(s) wait for the store (${run.store_fault})`);
     $("run-state").textContent = parts.join(" · ");
+    $("run-state").classList.toggle("fault", Boolean(run.store_fault));
   }
 
   curve() {

@@ -114,6 +114,8 @@ class RunPipeline {
 
   // Frames admitted and not yet settled.
   std::size_t pending() const { return pending_.size(); }
+  // Every frame index below it is settled (or skipped).
+  std::uint32_t frontier() const { return frontier_; }
   std::optional<PipelineClock::time_point> oldest_arrival() const;
   const PipelineCounts& counts() const { return counts_; }
 

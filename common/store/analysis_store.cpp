@@ -125,11 +125,22 @@ std::filesystem::path store_path(const std::filesystem::path& data_dir, const st
 
 StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& run_id) : run_id_(run_id) {
   h5::quiet();
-  std::optional<StoredRun> previous;
-  if (std::filesystem::exists(path)) previous = read_store(path);  // throws if unreadable: never overwrite data
   // A store is always written fresh: what an earlier writer left (perhaps killed mid-frame, its
   // SWMR flag still set) is read back and copied, then the copy replaces it atomically.
   const std::filesystem::path fresh = path.string() + ".new";
+  try {
+    create(path, fresh);
+  } catch (...) {
+    std::error_code ignored;  // the space it took is given back; the store stays as it was
+    std::filesystem::remove(fresh, ignored);
+    throw;
+  }
+}
+
+void StoreWriter::create(const std::filesystem::path& path, const std::filesystem::path& fresh) {
+  const std::string& run_id = run_id_;
+  std::optional<StoredRun> previous;
+  if (std::filesystem::exists(path)) previous = read_store(path);  // throws if unreadable: never overwrite data
   std::filesystem::remove(fresh);
   {
     const h5::PropertyList fapl = h5::latest_format();
@@ -300,6 +311,15 @@ void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
   h5::append_rows(set("rejected_frame"), H5T_NATIVE_UINT32, &r.index, 1, 0);
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush");
+  rejected_.push_back(r.index);
+}
+
+bool StoreWriter::holds_frame(std::uint32_t index) const {
+  return std::binary_search(frames_.begin(), frames_.end(), index);
+}
+
+bool StoreWriter::holds_rejection(std::uint32_t index) const {
+  return std::find(rejected_.begin(), rejected_.end(), index) != rejected_.end();
 }
 
 namespace {

@@ -53,6 +53,8 @@ class StoreWriter {
  public:
   // Creates the store, or continues an existing one: its committed content is copied into a
   // fresh file that replaces it (a store left by a killed writer cannot be reopened for writing).
+  // A failure (a full disk, no file descriptor left) leaves the store as it was and removes
+  // the fresh file.
   StoreWriter(const std::filesystem::path& path, const std::string& run_id);
   void write_info(const RunInfo& info, StoreTime at = store_time_now());
   void append(const AnalyzedFrame& frame, StoreTime at = store_time_now());
@@ -61,12 +63,17 @@ class StoreWriter {
   // was committed without one (copied from a fnet-store-1 store). Throws h5::Error for a frame the
   // store does not hold.
   std::optional<Frame> network(std::uint32_t index) const;
+  // Whether the file holds frame `index` committed, or its rejection.
+  bool holds_frame(std::uint32_t index) const;
+  bool holds_rejection(std::uint32_t index) const;
 
  private:
+  void create(const std::filesystem::path& path, const std::filesystem::path& fresh);
   hid_t set(const char* name) const;
   h5::File file_;
   std::string run_id_;
   std::vector<std::uint32_t> frames_;        // committed frame indices, ascending: the row of each
+  std::vector<std::uint32_t> rejected_;      // rejected frame indices, in the order written
   std::map<std::string, h5::Dataset> sets_;  // declared after file_: closed before it
 };
 

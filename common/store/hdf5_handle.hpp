@@ -14,13 +14,18 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The operating system's word for why the HDF5 call that just failed failed ("No space left on
+// device", "Too many open files"), from HDF5's error stack, as " (cause)"; empty when the stack
+// names none. Call before any other HDF5 call: each clears the stack.
+std::string system_cause();
+
 template <herr_t (*Close)(hid_t)>
 class Handle {
  public:
   Handle() = default;
   // Takes ownership of `id`; throws naming `what` when the call that produced it failed.
   Handle(hid_t id, const std::string& what) : id_(id) {
-    if (id_ < 0) throw Error("HDF5: " + what + " failed");
+    if (id_ < 0) throw Error("HDF5: " + what + " failed" + system_cause());
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
@@ -52,7 +57,7 @@ using Datatype = Handle<H5Tclose>;
 using PropertyList = Handle<H5Pclose>;
 
 inline void check(herr_t rc, const std::string& what) {
-  if (rc < 0) throw Error("HDF5: " + what + " failed");
+  if (rc < 0) throw Error("HDF5: " + what + " failed" + system_cause());
 }
 
 }  // namespace fnet::h5

@@ -1,6 +1,7 @@
 #include "common/store/hdf5_io.hpp"
 
 #include <array>
+#include <string_view>
 
 namespace fnet::h5 {
 namespace {
@@ -47,6 +48,24 @@ std::vector<T> read_any_array(hid_t group, const char* name, hid_t type, std::si
 
 }  // namespace
 
+std::string system_cause() {
+  std::string cause;
+  // The innermost error naming a system error wins: it is the one the others report.
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
+        static constexpr std::string_view kMark = "error message = '";
+        const std::string_view desc = e->desc ? e->desc : "";
+        if (const auto at = desc.find(kMark); at != std::string_view::npos) {
+          const auto begin = at + kMark.size(), end = desc.find('\'', begin);
+          if (end != std::string_view::npos) *static_cast<std::string*>(out) = desc.substr(begin, end - begin);
+        }
+        return 0;
+      },
+      &cause);
+  return cause.empty() ? cause : " (" + cause + ")";
+}
+
 PropertyList latest_format() {
   PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");
@@ -54,7 +73,8 @@ PropertyList latest_format() {
 }
 
 void quiet() {
-  static const bool once = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
+  // HDF5's error printing is set per thread: every thread that opens a store silences its own.
+  thread_local const bool once = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
   (void)once;
 }
 

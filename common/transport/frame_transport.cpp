@@ -133,7 +133,8 @@ Topics create_topics(dds_entity_t participant) {
 }  // namespace
 
 FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blocking)
-    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
+    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")),
+      status_(participant_.get()) {
   const auto [info_topic, frame_topic] = create_topics(participant_.get());
   Qos qos;
   set_qos(qos, true, DDS_LENGTH_UNLIMITED);
@@ -142,6 +143,10 @@ FramePublisher::FramePublisher(dds_domainid_t domain, dds_duration_t max_blockin
       check(dds_create_writer(participant_.get(), info_topic, qos.get(), nullptr), "dds_create_writer(RunInfo)");
   frame_writer_ =
       check(dds_create_writer(participant_.get(), frame_topic, qos.get(), nullptr), "dds_create_writer(ForceFrame)");
+}
+
+std::vector<ServerStore> FramePublisher::servers_storing(const std::string& run_id) {
+  return status_.servers(frame_writer_, run_id);
 }
 
 void FramePublisher::publish(const RunInfo& info) {
@@ -237,12 +242,15 @@ FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_
   frame_reader_ = check(dds_create_reader(participant_.get(), frame_topic, frame_qos.get(), nullptr),
                         "dds_create_reader(ForceFrame)");
   waitset_ = check(dds_create_waitset(participant_.get()), "dds_create_waitset");
+  status_.emplace(participant_.get());
   for (const dds_entity_t reader : {info_reader_, frame_reader_}) {
     const dds_entity_t cond = check(dds_create_readcondition(reader, DDS_ANY_STATE), "dds_create_readcondition");
     const dds_return_t rc = dds_waitset_attach(waitset_, cond, reader);
     if (rc != DDS_RETCODE_OK) throw Error("dds_waitset_attach", rc);
   }
 }
+
+void FrameSubscriber::publish(const RunStatus& status) { status_->write(status); }
 
 Received FrameSubscriber::take(dds_duration_t timeout, std::size_t max_frames) {
   const dds_return_t rc = dds_waitset_wait(waitset_, nullptr, 0, timeout);

@@ -4,12 +4,15 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <dds/dds.h>
 
 #include "common/run/run_frame.hpp"
 #include "common/transport/dds_entity.hpp"
+#include "common/transport/run_status_topic.hpp"
 
 namespace fnet::dds {
 
@@ -35,10 +38,14 @@ class FramePublisher {
   std::uint32_t lost_frame_readers() const;
   // Blocks until every matched reader acknowledged everything written, or timeout; true if all did.
   bool wait_for_acks(dds_duration_t timeout) const;
+  // The fnet-servers among the matched frame readers, each with its latest status of `run_id`'s
+  // store (run_status_topic.hpp).
+  std::vector<ServerStore> servers_storing(const std::string& run_id);
 
  private:
   Entity participant_;
   dds_entity_t info_writer_ = 0, frame_writer_ = 0;
+  RunStatusReader status_;
 };
 
 struct Received {
@@ -56,10 +63,13 @@ class FrameSubscriber {
 
   // Waits up to `timeout` for data, then takes everything available (at most max_frames frames).
   Received take(dds_duration_t timeout, std::size_t max_frames = SIZE_MAX);
+  // Tells the publishers of status.run_id how far the run is in this reader's store (thread-safe).
+  void publish(const RunStatus& status);
 
  private:
   Entity participant_;
   dds_entity_t info_reader_ = 0, frame_reader_ = 0, waitset_ = 0;
+  std::optional<RunStatusWriter> status_;  // made after the participant
 };
 
 }  // namespace fnet::dds

@@ -46,6 +46,8 @@ json summary_json(const RunSummary& s) {
               {"pending", s.pending},
               {"duplicates", s.duplicates},
               {"skipped", s.skipped},
+              {"unstored", s.unstored},
+              {"store_fault", s.store_fault.empty() ? json(nullptr) : json(s.store_fault)},
               {"first_frame", nullptr},
               {"last_frame", nullptr},
               {"rho", nullptr},
@@ -159,8 +161,12 @@ json server_status(const ApiContext& ctx) {
   const Counters c = r.counters();
   json rejections = json::array();
   for (const std::string& s : r.recent_rejections()) rejections.push_back(s);
-  json runs = json::array();
-  for (const RunSummary& s : r.runs()) runs.push_back(summary_json(s));
+  json runs = json::array(), faults = json::array();
+  for (const RunSummary& s : r.runs()) {
+    runs.push_back(summary_json(s));
+    if (!s.store_fault.empty())
+      faults.push_back({{"run", s.run_id}, {"reason", s.store_fault}, {"unstored", s.unstored}});
+  }
   const BuildInfo b = build_info();
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
           {"build",
@@ -171,6 +177,7 @@ json server_status(const ApiContext& ctx) {
             {"api", "json-rpc-2.0 (proto/api.md)"}}},
           {"ingest", ctx.ingest_state()},
           {"runs", runs},
+          {"stores", {{"open", r.stores_open()}, {"faults", faults}}},
           {"frames_per_second", r.frames_per_second()},
           {"lag", {{"frames_in_flight", r.in_flight()}, {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
           {"frames",

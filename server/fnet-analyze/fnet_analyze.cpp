@@ -33,7 +33,8 @@ constexpr const char* kUsage =
     "exit codes: 0 ok, 1 the input could not be analyzed (malformed CSV or JSON, not an HDF5 run\n"
     "            file, an invalid frame), 2 bad usage (unknown option, bad value, missing file),\n"
     "            3 publish: a subscriber may lack frames (it had not acknowledged every frame\n"
-    "            after --ack-timeout, or went away during the run)\n";
+    "            after --ack-timeout, or went away during the run, or a fnet-server had not\n"
+    "            stored them by then), 4 publish: a fnet-server cannot store the run\n";
 
 // store and publish need HDF5 and DDS, whose libraries (and theirs: TLS, Kerberos, LDAP...) take
 // several times longer to load than a 2 000-grain diagram takes to compute. They live in

@@ -1,4 +1,5 @@
 // fnet-analyze publish: replays a recorded run onto DDS, as fnet-simd would stream it.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <thread>
@@ -15,7 +16,8 @@ namespace po = boost::program_options;
 namespace fnet::analyze {
 namespace {
 constexpr int kNotDelivered = 3;
-}
+constexpr int kStoreFault = 4;
+}  // namespace
 
 int publish_command(const std::vector<std::string>& args) {
   const std::vector<sources::SourceKind> kinds = sources::run_kinds();
@@ -27,7 +29,9 @@ int publish_command(const std::vector<std::string>& args) {
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
       "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n"
       "Exit code 3: a matched reader had not acknowledged every frame after --ack-timeout seconds,\n"
-      "or went away during the run: it may lack frames.\n\n"
+      "or went away during the run, or a fnet-server among them had not stored them by then: it may\n"
+      "lack frames. Exit code 4: a fnet-server reading the run reports that it cannot store it (a\n"
+      "store fault: a full disk, no file descriptor left), naming the run, the server and why.\n\n"
       "options");
   double rate = 0;
   int domain = 0;
@@ -57,13 +61,19 @@ int publish_command(const std::vector<std::string>& args) {
   publisher.publish(info);
   const auto start = std::chrono::steady_clock::now();
   std::size_t published = 0;
+  std::uint32_t through = 0;  // one past the last frame index published
   while (const std::optional<RunFrame> frame = source->next()) {
     if (rate > 0)
       std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(published) / rate));
     publisher.publish(*frame);
+    through = std::max(through, frame->header.index + 1);
     ++published;
   }
+  const auto acks_from = std::chrono::steady_clock::now();
   const bool acknowledged = publisher.wait_for_acks(static_cast<dds_duration_t>(ack_timeout * 1e9));
+  const double left = ack_timeout - std::chrono::duration<double>(std::chrono::steady_clock::now() - acks_from).count();
+  const dds::StoreOutcome stores = dds::wait_for_stores([&] { return publisher.servers_storing(info.run_id); },
+                                                        info.run_id, through, std::max(0.0, left));
   std::cerr << "fnet-analyze publish: run " << info.run_id << ": " << published << " frames published, "
             << publisher.matched_readers() << " reader(s) matched\n";
   const std::uint32_t lost = publisher.lost_frame_readers();
@@ -75,7 +85,13 @@ int publish_command(const std::vector<std::string>& args) {
     std::cerr << "fnet-analyze publish: error: run " << info.run_id
               << ": not every frame was acknowledged by every matched reader within --ack-timeout " << ack_timeout
               << " s; the frames it has not acknowledged may not have reached it\n";
-  if (lost > 0 || !acknowledged) return kNotDelivered;
+  for (const std::string& fault : stores.faults)
+    std::cerr << "fnet-analyze publish: error: run " << info.run_id << " is not stored: " << fault << "\n";
+  for (const std::string& late : stores.unconfirmed)
+    std::cerr << "fnet-analyze publish: error: run " << info.run_id << ": " << late << " after --ack-timeout "
+              << ack_timeout << " s\n";
+  if (!stores.faults.empty()) return kStoreFault;
+  if (lost > 0 || !acknowledged || !stores.unconfirmed.empty()) return kNotDelivered;
   if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
   return 0;
 }

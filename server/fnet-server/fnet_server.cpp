@@ -1,7 +1,14 @@
 // fnet-server: subscribes to the frames of every run on DDS, analyzes them as they arrive, keeps
 // one store per run under --data-dir and answers JSON-RPC on 127.0.0.1 (proto/api.md); with
 // --http-port, the dashboard too (server/web).
+#include <unistd.h>
+
+#include <condition_variable>
+#include <csignal>
+#include <cstdlib>
+#include <future>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -23,6 +30,8 @@ using namespace fnet::server;
 RegistryLimits registry_limits(const ServerOptions& o) {
   RegistryLimits limits;
   limits.gap_timeout = std::chrono::milliseconds(static_cast<long>(o.gap_timeout * 1000));
+  limits.store_retry = std::chrono::milliseconds(static_cast<long>(o.store_retry * 1000));
+  limits.store_idle = std::chrono::milliseconds(static_cast<long>(o.store_idle * 1000));
   return limits;
 }
 
@@ -36,6 +45,72 @@ std::string dashboard_address(const std::string& bind, unsigned short port) {
 void load_stores(Registry& registry) {
   for (const std::string& problem : registry.load())
     std::cerr << "fnet-server: could not load a store: " << problem << "\n";
+}
+
+// How this server names itself to the publishers (fnet_RunStatus): host, process, data directory.
+std::string server_name(const std::string& data_dir) {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + ":" + std::to_string(getpid()) + ":" + data_dir;
+}
+
+// A thread that tends the stores four times a second (Registry::tend_stores) and tells the
+// publishers each run's status that changed, until destroyed.
+class StoreTending {
+ public:
+  StoreTending(Registry& registry, Ingest& ingest, std::string server)
+      : thread_([this, &registry, &ingest, server = std::move(server)] {
+          std::unique_lock lock(mutex_);
+          while (!cv_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stop_; })) {
+            lock.unlock();
+            try {
+              for (fnet::RunStatus& status : registry.tend_stores()) {
+                status.server = server;
+                ingest.publish_status(status);
+              }
+            } catch (const std::exception& e) {
+              std::cerr << "fnet-server: run status not published: " << e.what() << "\n";
+            }
+            lock.lock();
+          }
+        }) {}
+  ~StoreTending() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the rest exists
+};
+
+// Waits up to `seconds` for the analysis in progress. Past them, drops the jobs not started,
+// writes out what was committed, closes the stores and ends the process without waiting for the
+// jobs still running (their frames are not in the stores: publishers still running send them
+// again after a restart, from the history they keep).
+void stop_within(boost::asio::thread_pool& pool, Registry& registry, double seconds) {
+  std::promise<void> joined;
+  std::future<void> done = joined.get_future();
+  std::thread joiner([&pool, &joined] {
+    pool.join();
+    joined.set_value();
+  });
+  if (done.wait_for(std::chrono::duration<double>(seconds)) == std::future_status::ready) {
+    joiner.join();
+    return;
+  }
+  pool.stop();
+  registry.seal_stores();
+  std::cerr << "fnet-server: stopped after --stop-timeout " << seconds
+            << " s: frames still in analysis were abandoned (not stored; received again after a restart)" << std::endl;
+  std::cout.flush();
+  std::_Exit(0);
 }
 
 // Answers on two threads (a slow query never stalls every client) until SIGINT or SIGTERM.
@@ -58,6 +133,8 @@ int main(int argc, char** argv) {
   const auto parsed = parse_server_options(argc, argv);
   if (const int* exit_code = std::get_if<int>(&parsed)) return *exit_code;
   const ServerOptions& o = std::get<ServerOptions>(parsed);
+  // Beyond a file-size limit a write fails (a store fault, retried) instead of killing the server.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     boost::asio::thread_pool pool(o.threads);
     Registry registry(o.data_dir, pool, registry_limits(o));
@@ -80,9 +157,11 @@ int main(int argc, char** argv) {
               << std::endl;
     if (dashboard)
       std::cout << "fnet-server dashboard on " << dashboard_address(o.bind, dashboard->port()) << std::endl;
+    std::optional<StoreTending> tending(std::in_place, registry, ingest, server_name(o.data_dir));
     serve_until_signalled(io, server, dashboard);
     ingest.stop();
-    pool.join();  // finish what was taken, so the stores hold it
+    tending.reset();
+    stop_within(pool, registry, o.stop_timeout);  // finish what was taken, so the stores hold it
     std::cerr << "fnet-server: stopped\n";
     return 0;
   } catch (const std::exception& e) {

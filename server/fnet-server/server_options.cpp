@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include <boost/asio/ip/address.hpp>
 #include <boost/program_options.hpp>
@@ -74,6 +75,15 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "2 000-particle frame, counted twice: here and in the DDS reader)")(
       "gap-timeout", po::value(&o.gap_timeout)->default_value(o.gap_timeout),
       "seconds to wait for a missing frame before skipping it")(
+      "store-retry", po::value(&o.store_retry)->default_value(o.store_retry),
+      "seconds between retries of a run's store that cannot be written (a full disk, no file descriptor left); "
+      "its frames wait in memory, counted with --max-in-flight")(
+      "store-idle", po::value(&o.store_idle)->default_value(o.store_idle),
+      "seconds without a write after which a run's store is closed (a run whose planned frames are all settled is "
+      "closed at once); a closed store is read on demand and reopened by the run's next frame")(
+      "stop-timeout", po::value(&o.stop_timeout)->default_value(o.stop_timeout),
+      "seconds SIGTERM waits for the frames in analysis before it abandons them (the stores keep what was "
+      "committed; publishers still running send the rest again after a restart)")(
       "max-subscriptions", po::value(&o.max_subscriptions)->default_value(o.max_subscriptions),
       "subscriptions per connection");
   add_limit_options(options, o.limits);
@@ -98,6 +108,11 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       }
     }
     if (o.threads == 0 || o.max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
+    for (const auto& [flag, seconds] :
+         {std::pair{"--store-retry", o.store_retry}, std::pair{"--store-idle", o.store_idle},
+          std::pair{"--stop-timeout", o.stop_timeout}})
+      if (!(seconds > 0 && seconds <= 1e6))
+        throw po::error(std::string(flag) + " must be a number of seconds above 0 and at most 1e6");
     boost::system::error_code bad_address;
     boost::asio::ip::make_address(o.bind, bad_address);
     if (bad_address) throw po::error("--bind '" + o.bind + "' is not an IP address");

@@ -20,6 +20,9 @@ struct ServerOptions {
   std::size_t max_in_flight = 64, max_subscriptions = 16;
   rpc::ServerLimits limits;  // of every API connection, TCP and WebSocket
   double gap_timeout = 30;   // seconds
+  double store_retry = 2;    // seconds between retries of a store that cannot be written
+  double store_idle = 600;   // seconds without writes after which a run's store is closed
+  double stop_timeout = 5;   // seconds a stop waits for the analysis in progress
 };
 
 // The options, or the exit code when the program ends here: 0 after printing --help or

@@ -1,5 +1,6 @@
 #include "server/fnet-simd/output_sinks.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <stdexcept>
@@ -51,17 +52,25 @@ RunFrame run_frame(const FrameSnapshot& s) {
   return f;
 }
 
-DdsSink::DdsSink(dds_domainid_t domain, const RunInfo& info) : publisher_(domain) { publisher_.publish(info); }
+DdsSink::DdsSink(dds_domainid_t domain, const RunInfo& info) : publisher_(domain), run_id_(info.run_id) {
+  publisher_.publish(info);
+}
 
 void DdsSink::operator()(const RunFrame& frame) {
   publisher_.publish(frame);
+  through_ = std::max(through_, frame.header.index + 1);
   reached_ = reached_ || subscriber_now();
 }
 
 Delivery DdsSink::finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop) {
   Delivery delivery;
+  const auto started = std::chrono::steady_clock::now();
   delivery.acknowledged = publisher_.wait_for_acks(static_cast<dds_duration_t>(ack_timeout_seconds * 1e9));
   delivery.lost_readers = publisher_.lost_frame_readers();  // before lingering: one may leave then
+  const double left =
+      ack_timeout_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  delivery.stores = dds::wait_for_stores([this] { return publisher_.servers_storing(run_id_); }, run_id_, through_,
+                                         std::max(0.0, left));
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger_seconds);
   while (std::chrono::steady_clock::now() < until && !should_stop()) {
     reached_ = reached_ || subscriber_now();

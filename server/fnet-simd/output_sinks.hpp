@@ -29,6 +29,7 @@ void write_csv_provenance(const std::filesystem::path& dir, const RunInfo& info)
 struct Delivery {
   bool acknowledged = true;        // every matched subscriber acknowledged every frame in time
   std::uint32_t lost_readers = 0;  // subscribers matched during the run and gone since
+  dds::StoreOutcome stores;        // what the fnet-servers among them said of the run's store
 };
 
 // Publishes the run's announcement on construction and every frame handed to it.
@@ -36,8 +37,9 @@ class DdsSink {
  public:
   DdsSink(dds_domainid_t domain, const RunInfo& info);
   void operator()(const RunFrame& frame);
-  // At the end of a run: waits (bounded) until every matched reader has every frame, then keeps
-  // serving late readers from the durability history for `linger` seconds.
+  // At the end of a run: waits (bounded) until every matched reader has every frame and every
+  // fnet-server among them has them in its store (or reports a store fault), then keeps serving
+  // late readers from the durability history for `linger` seconds.
   // Stops lingering early once should_stop() is true.
   Delivery finish(double ack_timeout_seconds, double linger_seconds, const std::function<bool()>& should_stop);
   // Whether any frame reader was matched at a frame's publication or during finish().
@@ -46,6 +48,8 @@ class DdsSink {
 
  private:
   dds::FramePublisher publisher_;
+  std::string run_id_;
+  std::uint32_t through_ = 0;  // one past the last frame index published
   bool reached_ = false;
 };
 

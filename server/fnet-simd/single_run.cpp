@@ -34,6 +34,8 @@ namespace fs = std::filesystem;
 // Exit code of a finished run whose frames reached no one: DDS was its only output and no
 // subscriber ever matched.
 constexpr int kFramesLost = 3;
+// Exit code of a finished run that a fnet-server reading it cannot store (its store fault).
+constexpr int kStoreFault = 4;
 
 }  // namespace
 
@@ -152,6 +154,7 @@ int run_single(SimdOptions options, const std::atomic<bool>& stop) {
                  steps * static_cast<double>(sim.n) / seconds, sim.n, threads, threads == 1 ? "" : "s");
   run_file.reset();   // closed now: readers need not wait while late DDS subscribers are served
   bool lost = false;  // DDS was the only output and a subscriber lacks frames, or none ever matched
+  bool store_fault = false;
   if (dds) {
     if (!vm.count("quiet")) std::fprintf(stderr, "fnet-simd: waiting for subscribers to acknowledge every frame\n");
     const Delivery delivery = dds->finish(ack_timeout, finished ? linger : 0, o.should_stop);
@@ -167,7 +170,13 @@ int run_single(SimdOptions options, const std::atomic<bool>& stop) {
                    "fnet-simd: %s: a DDS subscriber had not acknowledged every frame after --ack-timeout %g s: the "
                    "frames it has not acknowledged may not have reached it%s\n",
                    severity, ack_timeout, kept);
-    lost = dds_only && (delivery.lost_readers > 0 || !delivery.acknowledged);
+    for (const std::string& fault : delivery.stores.faults)
+      std::fprintf(stderr, "fnet-simd: error: run %s is not stored: %s\n", run_id.c_str(), fault.c_str());
+    for (const std::string& late : delivery.stores.unconfirmed)
+      std::fprintf(stderr, "fnet-simd: %s: run %s: %s after --ack-timeout %g s%s\n", severity, run_id.c_str(),
+                   late.c_str(), ack_timeout, kept);
+    store_fault = !delivery.stores.faults.empty();
+    lost = dds_only && (delivery.lost_readers > 0 || !delivery.acknowledged || !delivery.stores.unconfirmed.empty());
     if (dds_only && !dds->reached_a_subscriber()) {
       lost = true;
       std::fprintf(stderr,
@@ -187,7 +196,7 @@ int run_single(SimdOptions options, const std::atomic<bool>& stop) {
     }
     return 130;
   }
-  return lost ? kFramesLost : 0;
+  return store_fault ? kStoreFault : lost ? kFramesLost : 0;
 }
 
 }  // namespace fnet::sim

@@ -34,6 +34,8 @@ class Ingest {
 
   // "running", or "stopped: <reason>" once the thread ended on an error (server.status shows it).
   std::string state() const;
+  // Tells the run's publishers how far it is in the store (fnet_RunStatus); thread-safe.
+  void publish_status(const RunStatus& status) { subscriber_->publish(status); }
 
  private:
   void run();

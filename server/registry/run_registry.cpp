@@ -35,8 +35,7 @@ auto Registry::locked_then_deliver(F&& f) {
   };
   const auto flush = [&] {
     if (ready.empty() && stores.empty()) return;
-    for (const auto& store : stores) store->write_queued();
-    for (const auto& outbox : ready) deliver(outbox);
+    write_then_deliver(stores, std::move(ready));
     std::lock_guard lock(mutex_);
     if (--flushing_ == 0) flushed_.notify_all();
   };
@@ -59,11 +58,45 @@ auto Registry::locked_then_deliver(F&& f) {
   }
 }
 
+void Registry::write_then_deliver(const std::vector<std::shared_ptr<RunStore>>& stores,
+                                  std::vector<std::shared_ptr<Outbox>> ready) {
+  for (const auto& store : stores) store->write_queued();
+  if (!stores.empty()) {
+    std::lock_guard lock(mutex_);
+    adopt_written_locked(stores);
+    for (const auto& outbox : ready_) outbox->marked = false;
+    ready.insert(ready.end(), ready_.begin(), ready_.end());
+    ready_.clear();
+  }
+  for (const auto& outbox : ready) deliver(outbox);
+}
+
 template <class Record>
 void Registry::store_locked(Run& run, Record&& record) {
   run.store->queue(std::forward<Record>(record));
+  ++run.unstored;
+  run.last_write = Clock::now();
   if (std::find(stores_ready_.begin(), stores_ready_.end(), run.store) == stores_ready_.end())
     stores_ready_.push_back(run.store);
+}
+
+// Under the lock, so that the records one thread takes are committed before those the next takes.
+void Registry::adopt_written_locked(const std::vector<std::shared_ptr<RunStore>>& stores) {
+  for (const auto& store : stores) {
+    const auto it = runs_.find(store->run_id());
+    if (it == runs_.end()) continue;
+    Run& run = it->second;
+    for (RunStore::Record& record : store->take_written()) {
+      --run.unstored;
+      if (auto* frame = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&record)) {
+        run.stored_through = std::max(run.stored_through, (*frame)->header.index + 1);
+        commit_locked(run, std::move(*frame));
+      } else if (const auto* rejected = std::get_if<RejectedFrame>(&record)) {
+        run.stored_through = std::max(run.stored_through, rejected->index + 1);
+        run.rejected.push_back(*rejected);
+      }
+    }
+  }
 }
 
 void Registry::mark_locked(const std::shared_ptr<Outbox>& outbox) {
@@ -220,6 +253,7 @@ void Registry::on_info(const RunInfo& info) {
     if (run.has_info && run.info == info) return nullptr;  // repeated announcement (a restarted reader)
     run.has_info = true;
     run.info = info;
+    run.contacted = true;
     run.last_activity = store_time_now();
     store_locked(run, info);
     return announcement_listener_;
@@ -247,6 +281,7 @@ void Registry::on_frame(RunFrame frame) {
       return;
     }
     Run& run = run_locked(frame.header.run_id);
+    run.contacted = true;
     run.last_activity = store_time_now();
     RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
     switch (admission.arrival) {
@@ -290,7 +325,7 @@ void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
 void Registry::publish_locked(Run& run) {
   for (Settlement& s : run.pipeline.take_settled()) {
     if (auto* accepted = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&s)) {
-      commit_locked(run, std::move(*accepted));
+      store_locked(run, std::move(*accepted));
     } else if (const auto* rejected = std::get_if<RejectedFrame>(&s)) {
       reject_locked(run, *rejected);
     } else if (const auto* skipped = std::get_if<SkippedFrames>(&s)) {
@@ -303,9 +338,9 @@ void Registry::publish_locked(Run& run) {
   while (!recent_commits_.empty() && recent_commits_.front() < horizon) recent_commits_.pop_front();
 }
 
-// The store and the subscribers see index order, the pipeline's.
+// The store and the subscribers see index order, the pipeline's: a frame settled is written to
+// the store, and committed once written.
 void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame) {
-  store_locked(run, frame);
   if (frame->network) {  // the store keeps the network; memory keeps only the diagrams
     auto kept = std::make_shared<AnalyzedFrame>(*frame);
     kept->network.reset();
@@ -319,7 +354,6 @@ void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> fram
 }
 
 void Registry::reject_locked(Run& run, const RejectedFrame& rejected) {
-  run.rejected.push_back(rejected);
   ++counters_.rejected;
   note_rejection_locked(rejected.reason);
   std::cerr << "fnet-server: rejected " << rejected.reason << "\n";
@@ -339,7 +373,77 @@ void Registry::check_gaps() {
 std::size_t Registry::in_flight() const {
   std::lock_guard lock(mutex_);
   std::size_t n = 0;
-  for (const auto& [id, run] : runs_) n += run.pipeline.pending();
+  for (const auto& [id, run] : runs_) n += run.pipeline.pending() + run.unstored;
+  return n;
+}
+
+RunStatus Registry::status_locked(const Run& run) const {
+  RunStatus s;
+  s.run_id = run.run_id;
+  // With nothing in analysis or waiting for the store, every frame below the pipeline's frontier
+  // is in the store or was skipped; otherwise only those up to the last record written are known
+  // to be (the frontier passes a frame once its diagrams are done, before its distances).
+  s.settled_through = run.unstored == 0 && run.pipeline.pending() == 0 ? run.pipeline.frontier() : run.stored_through;
+  s.stored = static_cast<std::uint32_t>(run.committed.size());
+  s.store_fault = run.store->fault();
+  return s;
+}
+
+std::vector<RunStatus> Registry::tend_stores() {
+  std::vector<std::shared_ptr<RunStore>> retry, close;
+  {
+    std::lock_guard lock(mutex_);
+    const auto now = Clock::now();
+    for (auto& [id, run] : runs_) {
+      if (!run.store->fault().empty()) {
+        if (now >= run.next_retry) {
+          run.next_retry = now + limits_.store_retry;
+          retry.push_back(run.store);
+        }
+        continue;
+      }
+      const bool finished = run.has_info && run.info.frames > 0 && run.pipeline.frontier() >= run.info.frames;
+      if (run.unstored == 0 && run.pipeline.pending() == 0 && run.store->open() &&
+          (finished || now - run.last_write >= limits_.store_idle))
+        close.push_back(run.store);
+    }
+  }
+  for (const auto& store : retry) store->retry();
+  for (const auto& store : close) store->close();  // declines if a write came meanwhile
+  {
+    std::lock_guard lock(mutex_);
+    ++flushing_;
+  }
+  write_then_deliver(retry, {});
+  std::vector<RunStatus> changed;
+  std::lock_guard lock(mutex_);
+  if (--flushing_ == 0) flushed_.notify_all();
+  for (auto& [id, run] : runs_) {
+    if (!run.contacted) continue;
+    RunStatus now = status_locked(run);
+    if (run.status_sent == now) continue;
+    run.status_sent = now;
+    changed.push_back(std::move(now));
+  }
+  return changed;
+}
+
+void Registry::seal_stores() {
+  std::vector<std::shared_ptr<RunStore>> stores;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, run] : runs_) stores.push_back(run.store);
+  }
+  for (const auto& store : stores) {
+    store->write_queued();
+    store->close(true);
+  }
+}
+
+std::size_t Registry::stores_open() const {
+  std::lock_guard lock(mutex_);
+  std::size_t n = 0;
+  for (const auto& [id, run] : runs_) n += run.store->open();
   return n;
 }
 
@@ -353,6 +457,8 @@ RunSummary Registry::summary_locked(const std::string& id, const Run& run) const
   s.pending = run.pipeline.pending();
   s.duplicates = run.pipeline.counts().duplicates;
   s.skipped = run.pipeline.counts().skipped;
+  s.unstored = run.unstored;
+  s.store_fault = run.store->fault();
   if (!run.committed.empty()) {
     s.first_frame = run.committed.begin()->first;
     s.last_frame = run.committed.rbegin()->first;

@@ -2,11 +2,16 @@
 // decides their order and acceptance (duplicates dropped, out-of-order frames waiting for their
 // predecessors, a frame missing for longer than the gap timeout skipped, distances to the
 // previous accepted frame). The registry adds the concurrency, running the pipelines' jobs on a
-// bounded thread pool under one lock, and the publication: what a pipeline settles is committed
-// in index order to the run's store and to the subscribers. The lock guards memory only: the
-// stores are written and read under locks of their own (run_store.hpp) and the subscribers are
-// served from their outboxes (subscriber.hpp), both after it is released. A restart reloads every
-// store.
+// bounded thread pool under one lock, and the publication: what a pipeline settles is written in
+// index order to the run's store, and committed — counted, served, sent to the subscribers — once
+// the store holds it. The lock guards memory only: the stores are written and read under locks of
+// their own (run_store.hpp) and the subscribers are served from their outboxes (subscriber.hpp),
+// both after it is released. A restart reloads every store.
+//
+// A store that cannot be written is the run's fault (RunSummary::store_fault): what waits for it
+// stays queued, counted among the frames in flight (so the ingest's bound on them bounds its
+// memory too), and tend_stores() retries it. tend_stores() also closes the stores of finished
+// runs (every planned frame settled) and of idle ones.
 #pragma once
 
 #include <chrono>
@@ -27,6 +32,7 @@
 
 #include "common/analysis/run_pipeline.hpp"
 #include "common/run/run_frame.hpp"
+#include "common/run/run_status.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/registry/run_store.hpp"
 #include "server/registry/subscriber.hpp"
@@ -39,7 +45,9 @@ struct RunSummary {
   std::string run_id;
   bool has_info = false;
   RunInfo info;
-  std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0;
+  // frames and rejected: those the store holds; unstored: settled, waiting for the store.
+  std::size_t frames = 0, rejected = 0, pending = 0, duplicates = 0, skipped = 0, unstored = 0;
+  std::string store_fault;  // why the run's store takes no writes; empty while it does
   std::optional<std::uint32_t> first_frame, last_frame;
   double last_rho = 0, last_z = 0;
   int dimension = 2;            // the last committed frame's
@@ -63,6 +71,8 @@ struct Counters {
 struct RegistryLimits {
   std::chrono::milliseconds gap_timeout{30000};  // a missing frame is skipped after this
   std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
+  std::chrono::milliseconds store_retry{2000};   // a store at fault is retried this often
+  std::chrono::milliseconds store_idle{600000};  // a store written to no more for this long is closed
 };
 
 class Registry {
@@ -96,8 +106,18 @@ class Registry {
   // Skips frames missing for longer than the gap timeout; call periodically.
   void check_gaps();
 
-  // Frames received and not yet committed, over all runs (the ingest's back-pressure measure).
+  // Frames received and not yet committed, over all runs (the ingest's back-pressure measure):
+  // in analysis, or waiting for their store.
   std::size_t in_flight() const;
+
+  // Call periodically (from one thread): retries the stores at fault whose turn has come, closes
+  // the stores of finished and idle runs, and returns the status of each run contacted since the
+  // server started whose status changed since the last call (RunStatus::server left empty).
+  std::vector<RunStatus> tend_stores();
+  // At a stop: writes out what is queued for the stores (what the analysis committed) and closes
+  // them for good; what is settled later is not written (it is received again after a restart).
+  void seal_stores();
+  std::size_t stores_open() const;
 
   std::vector<RunSummary> runs() const;
   std::optional<RunSummary> run(const std::string& run_id) const;
@@ -143,7 +163,12 @@ class Registry {
     std::vector<RejectedFrame> rejected;
     std::optional<StoreTime> last_activity;
     StoreTime known_since = store_time_now();
-    std::shared_ptr<RunStore> store;  // never null
+    std::shared_ptr<RunStore> store;   // never null
+    std::size_t unstored = 0;          // records queued for the store and not yet committed
+    std::uint32_t stored_through = 0;  // every frame below it is settled in the store
+    Clock::time_point last_write = Clock::now(), next_retry = Clock::now();
+    bool contacted = false;  // a frame or announcement came since the server started
+    std::optional<RunStatus> status_sent;
   };
   // A subscription's place in the runs it follows. Its points are read from the committed frames
   // when they are delivered, a page at a time, never copied ahead: a subscription holds no backlog,
@@ -175,6 +200,12 @@ class Registry {
   void publish_locked(Run& run);
   void commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame);
   void reject_locked(Run& run, const RejectedFrame& rejected);
+  // What the stores wrote: frames committed, rejections recorded, in the order written.
+  void adopt_written_locked(const std::vector<std::shared_ptr<RunStore>>& stores);
+  // Writes `stores` out off the lock, commits what they wrote and delivers what that queued.
+  void write_then_deliver(const std::vector<std::shared_ptr<RunStore>>& stores,
+                          std::vector<std::shared_ptr<Outbox>> ready);
+  RunStatus status_locked(const Run& run) const;
   // Queues a write to the run's store, written out when the lock is released.
   template <class Record>
   void store_locked(Run& run, Record&& record);

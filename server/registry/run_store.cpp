@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "common/store/hdf5_io.hpp"
+
 namespace fnet::server {
 
 RunStore::RunStore(std::filesystem::path path, std::string run_id)
@@ -11,7 +13,6 @@ RunStore::RunStore(std::filesystem::path path, std::string run_id)
 
 void RunStore::push(Record record, StoreTime at) {
   std::lock_guard lock(queue_mutex_);
-  if (!problem_.empty()) return;  // the store stopped taking writes
   queue_.push_back({std::move(record), at});
 }
 
@@ -21,64 +22,110 @@ void RunStore::queue(const RejectedFrame& rejected, StoreTime at) { push(rejecte
 
 void RunStore::write_queued() {
   std::lock_guard io(io_mutex_);
-  write_queued_locked();
+  write_queued_locked(false);
 }
 
-void RunStore::fail_locked(const std::string& what) {
-  failed_ = true;
-  std::cerr << "fnet-server: store of run " << run_id_ << ": " << what << "\n";
+bool RunStore::retry() {
+  std::lock_guard io(io_mutex_);
+  write_queued_locked(true);
+  return fault().empty();
+}
+
+std::vector<RunStore::Record> RunStore::take_written() {
   std::lock_guard lock(queue_mutex_);
-  problem_ = what;
-  queue_.clear();
+  return std::exchange(written_, {});
 }
 
-void RunStore::write_queued_locked() {
+bool RunStore::holds_locked(const Record& record) const {
+  if (const auto* frame = std::get_if<std::shared_ptr<const AnalyzedFrame>>(&record))
+    return writer_->holds_frame((*frame)->header.index);
+  if (const auto* rejected = std::get_if<RejectedFrame>(&record)) return writer_->holds_rejection(rejected->index);
+  return false;  // an announcement written twice is only a repeated row of the announcements
+}
+
+void RunStore::write_queued_locked(bool retrying) {
+  h5::quiet();  // on this thread too: the exceptions carry HDF5's messages
+  bool reopened = false;
   while (true) {
-    Queued next;
+    const Queued* head = nullptr;
     {
       std::lock_guard lock(queue_mutex_);
-      if (queue_.empty()) return;
-      next = std::move(queue_.front());
-      queue_.pop_front();
+      if (queue_.empty() || sealed_ || (!fault_.empty() && !retrying)) return;
+      head = &queue_.front();  // only this thread pops, under io_mutex_: the head stays put
     }
-    if (failed_) continue;
     try {
-      if (!writer_) writer_ = std::make_unique<StoreWriter>(path_, run_id_);
-      std::visit(
-          [&](const auto& r) {
-            using R = std::decay_t<decltype(r)>;
-            if constexpr (std::is_same_v<R, RunInfo>)
-              writer_->write_info(r, next.at);
-            else if constexpr (std::is_same_v<R, RejectedFrame>)
-              writer_->append(r, next.at);
-            else
-              writer_->append(*r, next.at);
-          },
-          next.record);
+      if (!writer_) {
+        writer_ = std::make_unique<StoreWriter>(path_, run_id_);
+        reopened = true;
+        std::lock_guard lock(queue_mutex_);
+        open_ = true;
+      }
+      if (!reopened || !holds_locked(head->record))
+        std::visit(
+            [&](const auto& r) {
+              using R = std::decay_t<decltype(r)>;
+              if constexpr (std::is_same_v<R, RunInfo>)
+                writer_->write_info(r, head->at);
+              else if constexpr (std::is_same_v<R, RejectedFrame>)
+                writer_->append(r, head->at);
+              else
+                writer_->append(*r, head->at);
+            },
+            head->record);
     } catch (const std::exception& e) {
-      fail_locked(e.what());
+      // The file may hold part of the record: it is closed, and continued from what it commits.
+      writer_.reset();
+      std::lock_guard lock(queue_mutex_);
+      if (fault_.empty())
+        std::cerr << "fnet-server: store of run " << run_id_ << ": " << e.what() << "; " << queue_.size()
+                  << " record(s) wait, retried periodically\n";
+      fault_ = e.what();
+      open_ = false;
+      return;
     }
+    std::lock_guard lock(queue_mutex_);
+    if (!fault_.empty()) {
+      std::cerr << "fnet-server: store of run " << run_id_ << " takes writes again\n";
+      fault_.clear();
+    }
+    written_.push_back(std::move(queue_.front().record));
+    queue_.pop_front();
   }
+}
+
+bool RunStore::close(bool seal) {
+  std::lock_guard io(io_mutex_);
+  std::lock_guard lock(queue_mutex_);
+  if (seal) sealed_ = true;
+  if (!queue_.empty() && !seal) return false;
+  h5::quiet();
+  writer_.reset();
+  open_ = false;
+  return true;
 }
 
 std::optional<Frame> RunStore::network(std::uint32_t index) {
   std::lock_guard io(io_mutex_);
-  write_queued_locked();
-  const std::string why = problem();
-  if (!writer_ && failed_) throw std::runtime_error("the run has no store (" + why + ")");
+  write_queued_locked(false);
+  const std::string why = fault();
   try {
-    // A run loaded from its store and not written since is read without rewriting the file.
+    // A closed store is read without reopening it for writing.
     return writer_ ? writer_->network(index) : read_network(path_, index);
   } catch (const std::exception& e) {
     std::string message = e.what();
-    if (!why.empty()) message += " (" + why + ")";
+    if (!why.empty()) message += " (the store does not take writes: " + why + ")";
     throw std::runtime_error(message);
   }
 }
 
-std::string RunStore::problem() const {
+std::string RunStore::fault() const {
   std::lock_guard lock(queue_mutex_);
-  return problem_;
+  return fault_;
+}
+
+bool RunStore::open() const {
+  std::lock_guard lock(queue_mutex_);
+  return open_;
 }
 
 }  // namespace fnet::server

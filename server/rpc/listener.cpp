@@ -1,5 +1,8 @@
 #include "server/rpc/listener.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <iostream>
 #include <stdexcept>
 
 namespace fnet::rpc {
@@ -39,7 +42,8 @@ Listener::Listener(asio::io_context& io, const std::string& address, unsigned sh
       acceptor_(listen_on(io, address, port)),
       max_connections_(max_connections),
       refusal_(std::move(refusal)),
-      start_(std::move(start)) {
+      start_(std::move(start)),
+      retry_(io) {
   accept_next();
 }
 
@@ -48,23 +52,39 @@ unsigned short Listener::port() const { return acceptor_.local_endpoint().port()
 void Listener::stop() {
   boost::system::error_code ignored;
   acceptor_.close(ignored);
+  retry_.cancel();
+}
+
+void Listener::accept_later(const boost::system::error_code& why) {
+  constexpr std::chrono::milliseconds kFirst{50}, kLongest{1000};
+  if (backoff_.count() == 0)
+    std::cerr << "fnet-server: cannot accept a connection on port " << port() << ": " << why.message()
+              << "; retrying every second at most until it can\n";
+  backoff_ = std::clamp(backoff_ * 2, kFirst, kLongest);
+  retry_.expires_after(backoff_);
+  retry_.async_wait([this](boost::system::error_code ec) {
+    if (!ec && acceptor_.is_open()) accept_next();
+  });
 }
 
 void Listener::accept_next() {
   const Strand strand = asio::make_strand(io_);
   acceptor_.async_accept(strand, [this, strand](boost::system::error_code ec, tcp::socket socket) {
     if (ec == asio::error::operation_aborted) return;
-    if (!ec) {
-      if (*connections_ >= max_connections_) {
-        boost::system::error_code ignored;
-        socket.non_blocking(true, ignored);
-        socket.write_some(asio::buffer(refusal_), ignored);
-        socket.close(ignored);
-      } else {
-        ++*connections_;
-        std::shared_ptr<void> slot(nullptr, [count = connections_](void*) { --*count; });
-        start_(std::move(socket), strand, std::move(slot));
-      }
+    if (ec) return accept_later(ec);  // EMFILE and the like: retrying at once would spin
+    if (backoff_.count() != 0) {
+      std::cerr << "fnet-server: accepting connections on port " << port() << " again\n";
+      backoff_ = std::chrono::milliseconds(0);
+    }
+    if (*connections_ >= max_connections_) {
+      boost::system::error_code ignored;
+      socket.non_blocking(true, ignored);
+      socket.write_some(asio::buffer(refusal_), ignored);
+      socket.close(ignored);
+    } else {
+      ++*connections_;
+      std::shared_ptr<void> slot(nullptr, [count = connections_](void*) { --*count; });
+      start_(std::move(socket), strand, std::move(slot));
     }
     accept_next();
   });

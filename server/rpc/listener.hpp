@@ -1,6 +1,9 @@
 // Where a transport of the API listens: an acceptor whose connections are counted and bounded.
 // Each accepted connection gets a strand of its own and a slot that it holds while it lives;
-// beyond max_connections a connection is sent the transport's refusal and closed.
+// beyond max_connections a connection is sent the transport's refusal and closed. When accepting
+// fails (no file descriptor left: EMFILE, ENFILE; no memory) the listener waits before it tries
+// again, longer each time up to a second, instead of retrying at once: the connections it serves
+// keep the CPU, and it accepts again as soon as a descriptor is free at a retry.
 #pragma once
 
 #include <atomic>
@@ -32,12 +35,15 @@ class Listener {
 
  private:
   void accept_next();
+  void accept_later(const boost::system::error_code& why);
 
   boost::asio::io_context& io_;
   boost::asio::ip::tcp::acceptor acceptor_;
   const std::size_t max_connections_;
   const std::string refusal_;
   const Start start_;
+  boost::asio::steady_timer retry_;
+  std::chrono::milliseconds backoff_{0};  // 0 while accepting succeeds
   const std::shared_ptr<std::atomic<std::size_t>> connections_ = std::make_shared<std::atomic<std::size_t>>(0);
 };
 

@@ -1,7 +1,8 @@
 // A publisher ends only when every matched reader has every frame, and says when one may not:
 // fnet-analyze publish against a fnet-server that stops reading (SIGSTOP) for longer than the
 // publisher's --ack-timeout fails with exit code 3 and says so; with the default timeout it waits
-// the stall out and every frame is analyzed; a server killed mid-run is reported once DDS drops it.
+// the stall out and every frame is analyzed (and stored); a server killed mid-run is reported once
+// DDS drops it.
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/store/analysis_store.hpp"
 #include "tests/e2e/service_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -98,6 +100,11 @@ TEST(Delivery, PublisherFailsWhenAReaderMayLackFramesAndWaitsOutAStall) {
   const nlohmann::json run = wait_for_frames(server.port, "long-wait", kFrames, 60s);
   EXPECT_EQ(run["frames"], kFrames) << run.dump();
   EXPECT_EQ(run["rejected"], 0) << run.dump();
+  // What the API reports committed across the stall is in the store.
+  for (const std::string r : {"short-wait", "long-wait"})
+    EXPECT_GE(read_store(store_path(tmp.path() / "data", r)).frames.size(),
+              wait_for_frames(server.port, r, 1, 30s)["frames"].get<std::size_t>())
+        << r;
 
   {
     // Publication (9 s) goes on after the kill unless the first commit takes as long: frames are left unacknowledged.

@@ -160,10 +160,16 @@ TEST(Service, KilledServerRestartsAndEndsWithTheCompleteSeriesCountedOnce) {
       if (!runs.empty()) stored_at_kill = runs[0]["frames"].get<int>();
       if (stored_at_kill < 2) std::this_thread::sleep_for(50ms);
     }
+    const json served = rpc.call("series.get", {{"run", "crash"}, {"metric", "bottleneck"}});
     first.process->signal(SIGKILL);
     first.process->wait(10s);
     ASSERT_GE(stored_at_kill, 2);
     EXPECT_LT(stored_at_kill, 6) << "the kill came after the whole run: the restart recovers nothing";
+    // Nothing reported committed before the kill is lost: every frame served is in the store.
+    std::set<std::uint32_t> in_store;
+    for (const AnalyzedFrame& f : read_store(store_path(tmp.path() / "data", "crash")).frames)
+      in_store.insert(f.header.index);
+    for (const json& k : served["frame"]) EXPECT_TRUE(in_store.count(k.get<std::uint32_t>())) << "frame " << k;
   }
   ServerProcess second = start_server(tmp.path() / "data", 33, tmp.path() / "server2.log");
   const json run = wait_for_frames(second.port, "crash", 6);

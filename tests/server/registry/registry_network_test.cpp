@@ -1,7 +1,7 @@
 // The registry writes each accepted frame's network to the run's store and keeps none in memory:
 // a network is read back from the store when asked for, also by a registry that reloaded it. The
 // store is written off the registry's lock: a frame is readable as soon as it is committed, and a
-// store that fails stops neither the analysis nor the answers.
+// store that fails fails its run until a retry writes what waits.
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -106,27 +106,50 @@ TEST(RegistryNetwork, EveryCommittedFrameReadsBackAtOnceWhileFramesFlowIn) {
             testing::lammps_frame((n - 1) % testing::lammps_frame_count()).contacts.size());
 }
 
-TEST(RegistryNetwork, AStoreThatCannotBeWrittenStopsNeitherTheAnalysisNorTheAnswers) {
+// A store that cannot be written fails its run: the frames are analyzed but not committed (not
+// counted, not served), they wait in flight, the status the publishers read names the fault,
+// and once the store can be written a retry commits every one of them, in order.
+TEST(RegistryNetwork, AStoreThatCannotBeWrittenFailsItsRunUntilARetryWritesEveryFrame) {
   testing::TempDir dir;
   boost::asio::thread_pool pool(2);
   std::filesystem::create_directories(store_path(dir.path(), "nets"));  // where the file would go
-  Registry registry(dir.path(), pool);
+  RegistryLimits limits;
+  limits.store_retry = 10ms;
+  Registry registry(dir.path(), pool, limits);
   registry.on_frame(run_frame(0, 0));
   registry.on_frame(run_frame(1, 1));
-  wait_for(registry, 2);
-  const auto s = registry.run("nets");
-  ASSERT_TRUE(s);
-  EXPECT_EQ(s->frames, 2u);
-  EXPECT_TRUE(registry.frame("nets", 1));
-  try {
-    registry.network("nets", 1);
-    ADD_FAILURE() << "the store was never written";
-  } catch (const NetworkUnavailable& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("run nets frame 1: the force network is not stored: the run has no store ("), std::string::npos)
-        << what;
-    EXPECT_NE(what.find("nets.h5"), std::string::npos) << "the cause names the file: " << what;
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  auto s = registry.run("nets");
+  while (!(s->pending == 0 && s->unstored == 2) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+    s = registry.run("nets");
   }
+  ASSERT_EQ(s->unstored, 2u) << "the frames were not analyzed";
+  EXPECT_EQ(s->frames, 0u);
+  EXPECT_FALSE(registry.frame("nets", 1));
+  EXPECT_EQ(registry.in_flight(), 2u);
+  EXPECT_NE(s->store_fault.find("nets.h5"), std::string::npos) << "the fault names the file: " << s->store_fault;
+  EXPECT_THROW(registry.network("nets", 1), NetworkUnavailable);
+  const std::vector<RunStatus> failing = registry.tend_stores();
+  ASSERT_EQ(failing.size(), 1u);
+  EXPECT_EQ(failing[0].store_fault, s->store_fault);
+  EXPECT_EQ(failing[0].settled_through, 0u);
+
+  std::filesystem::remove(store_path(dir.path(), "nets"));  // the obstacle goes
+  std::vector<RunStatus> healed;
+  while (registry.run("nets")->frames < 2 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);
+    for (RunStatus& r : registry.tend_stores()) healed.push_back(std::move(r));
+  }
+  s = registry.run("nets");
+  EXPECT_EQ(s->frames, 2u);
+  EXPECT_EQ(s->unstored, 0u);
+  EXPECT_EQ(s->store_fault, "");
+  EXPECT_EQ(registry.in_flight(), 0u);
+  EXPECT_EQ(registry.network("nets", 1).contacts.size(), testing::lammps_frame(1).contacts.size());
+  for (RunStatus& r : registry.tend_stores()) healed.push_back(std::move(r));
+  ASSERT_FALSE(healed.empty());
+  EXPECT_EQ(healed.back(), (RunStatus{"nets", "", 2, 2, ""}));
 }
 
 TEST(RegistryNetwork, AReloadedRunIsReadThenContinued) {
