@@ -159,7 +159,10 @@ void Connection::read_if_room() {
   if (closed_ || reading_ || !waiting_.empty()) return;
   {
     std::lock_guard lock(mutex_);
-    if (close_when_flushed_ || in_progress_ >= limits_.max_calls_in_progress) return;
+    // A client whose answers wait unread past the bound is not read until it reads them.
+    if (close_when_flushed_ || in_progress_ >= limits_.max_calls_in_progress ||
+        queued_bytes_ >= limits_.max_queued_bytes)
+      return;
   }
   reading_ = true;
   read_next();
@@ -392,6 +395,7 @@ void Connection::written(const boost::system::error_code& ec) {
   if (resume) resume();
   if (ec) return close();
   if (close_now) return finish();
+  read_if_room();
   if (more) write_next();
 }
 

@@ -8,7 +8,8 @@
 // - calls in progress: at most max_calls_in_progress (a batch counts as its calls); the calls
 //   beyond wait in the connection's own queue and its input is not read until they have started;
 // - output in bytes: an answer larger than max_answer_bytes, or one that would take the unread
-//   output past max_queued_bytes, is replaced by an error naming the limit; subscriptions send
+//   output past max_queued_bytes, is replaced by an error naming the limit, and the client's input
+//   is not read while its unread output is past that bound; subscriptions send
 //   only while the unread output is under subscription_window (wait_for_room); a notification
 //   past max_queued_bytes ends the connection, with that error as its last words;
 // - time: a first message within first_request_timeout, a message begun finished within

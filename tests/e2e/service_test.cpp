@@ -297,9 +297,9 @@ TEST(Service, TwoRunsStreamingAtOnceAreKeptApart) {
 
 TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   testing::TempDir tmp;
-  ServerProcess server = start_server(
-      tmp.path() / "data", 36, tmp.path() / "server.log",
-      {"--threads", "2", "--max-connections", "64", "--max-line-bytes", "65536", "--max-queued-bytes", "1000000"});
+  ServerProcess server = start_server(tmp.path() / "data", 36, tmp.path() / "server.log",
+                                      {"--threads", "2", "--max-connections", "64", "--max-line-bytes", "65536",
+                                       "--max-queued-bytes", "1000000", "--write-timeout", "3"});
   const auto raw = [&](const std::string& text) {
     boost::asio::io_context io;
     boost::asio::ip::tcp::socket s(io);
@@ -357,7 +357,8 @@ TEST(Service, BadRequestsGetErrorsAndEveryoneElseIsStillServed) {
   EXPECT_GE(refused, 200u);
   crowd.clear();
 
-  // A client that never reads: it asks for much more than the output bound and is dropped.
+  // A client that never reads: it asks for much more than the output bound, is not read past it,
+  // and is dropped once its output has not moved for --write-timeout.
   boost::asio::ip::tcp::socket hog(io);
   hog.connect({boost::asio::ip::make_address("127.0.0.1"), server.port});
   const std::string request = R"({"jsonrpc":"2.0","id":1,"method":"server.status"})"

@@ -2,7 +2,7 @@
 """fnet-server under load: many clients mixing the methods and subscriptions while runs stream.
 
 usage: bench_load.py BUILD_DIR [--clients 500] [--subscribers 100] [--runs 4] [--frames 40]
-                     [--particles 2000] [--rate 2] [--domain 231] [--check]
+                     [--particles 2000] [--rate 2] [--domain 217] [--check]
 
 fnet-simd records one compression of PARTICLES disks (--no-dds, CSV export); RUNS publishers
 (fnet-analyze publish --rate RATE) replay it onto DDS as RUNS runs streaming at once to a fresh
@@ -24,7 +24,7 @@ p.add_argument("--runs", type=int, default=4)
 p.add_argument("--frames", type=int, default=40)
 p.add_argument("--particles", type=int, default=2000)
 p.add_argument("--rate", type=float, default=2)
-p.add_argument("--domain", type=int, default=231)
+p.add_argument("--domain", type=int, default=217)
 p.add_argument("--check", action="store_true")
 a = p.parse_args()
 
