@@ -17,6 +17,9 @@ struct ServerOptions {
   int domain = 0;                           // DDS domain id
   std::size_t max_in_flight = 64, max_connections = 256, max_line = 1 << 20, max_subscriptions = 16,
               max_queued = 16 << 20;
+  // Frames: the bytes held for analysis at once, the largest frame, and contacts per grain
+  // (contact_degeneracy; 0: no bound).
+  std::size_t max_in_flight_mib = 256, max_frame_mib = 64, max_contacts_per_grain = 24;
   double gap_timeout = 30;  // seconds
 };
 
