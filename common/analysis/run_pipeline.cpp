@@ -59,8 +59,8 @@ std::optional<RunPipeline::Admission> RunPipeline::arrival(std::uint32_t index, 
 
 RunPipeline::Admission RunPipeline::admit(RunFrame frame, PipelineClock::time_point now) {
   const std::uint32_t index = frame.header.index;
-  if (std::string problem = header_problem(frame.header); !problem.empty())
-    return refuse(frame.header, std::move(problem), now);
+  if (const std::string problem = header_problem(frame.header); !problem.empty())
+    return refuse(frame.header, frame.frame.label + ": header rejected: " + problem, now);
   if (auto settled = arrival(index, frame.frame.label)) return std::move(*settled);
   Slot& slot = pending_[index];
   slot.frame = std::make_shared<AnalyzedFrame>();

@@ -30,7 +30,7 @@ std::string header_problem(const FrameHeader& h) {
     problem = "time = " + number(h.time) + " is not a finite number >= 0";
   if (problem.empty() && h.step > kMaxStep)
     problem = "step = " + std::to_string(h.step) + " exceeds 2^53, the largest integer every JSON reader holds exactly";
-  return problem.empty() ? problem : frame_label(h.run_id, h.index) + ": header rejected: " + problem;
+  return problem;
 }
 
 std::size_t frame_bytes(std::size_t grains, std::size_t contacts, std::size_t wall_contacts) {

@@ -24,7 +24,7 @@ inline constexpr double kMaxZ = 48;
 inline constexpr std::uint64_t kMaxStep = std::uint64_t{1} << 53;
 
 // Empty when the header's numbers are usable: rho finite in [0, kMaxRho], z finite in [0, kMaxZ],
-// time finite and >= 0, step <= kMaxStep; else why not, starting with the frame's label.
+// time finite and >= 0, step <= kMaxStep; else what is wrong ("rho = nan is not ...").
 std::string header_problem(const FrameHeader& header);
 
 // The bytes a frame holds in memory: each grain declared (with its particle table or not, since

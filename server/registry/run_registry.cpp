@@ -8,6 +8,7 @@
 
 #include "common/analysis/jamming.hpp"
 #include "common/run/run_names.hpp"
+#include "server/registry/announcement_check.hpp"
 
 namespace fnet::server {
 
@@ -179,9 +180,10 @@ void Registry::note_rejection_locked(std::string reason) {
 
 void Registry::on_info(const RunInfo& info) {
   const auto listener = locked_then_deliver([&]() -> std::function<void(const RunInfo&)> {
-    if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
+    if (const std::string problem = announcement_problem(info); !problem.empty()) {
       ++counters_.malformed;
       note_rejection_locked("run announcement rejected: " + problem);
+      std::cerr << "fnet-server: run announcement rejected: " << problem << "\n";
       return nullptr;
     }
     Run& run = run_locked(info.run_id);
