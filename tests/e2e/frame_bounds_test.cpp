@@ -173,7 +173,7 @@ TEST(FrameBounds, EnsembleSeriesLeavesOutStoredFramesWhoseHeaderNoCurveCanPlace)
   }
   ServerProcess server = start_server(data, kDomain, tmp.path() / "server.log");
   const json curve = client::RpcClient("127.0.0.1", server.port)
-                         .call("ensemble.series", {{"ensemble", "old"}, {"metric", "bottleneck"}, {"bins", 3}});
+                         .call("ensemble.series", {{"ensemble", "old"}, {"metric", "bottleneck"}});
   EXPECT_EQ(curve["runs"], json::array({"old-a", "old-b"}));
   EXPECT_EQ(curve["left_out"],
             json::array({"run old-a frame 1: left out: rho = 1e+300 is not a finite number in [0, 2]",
