@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
+
+#include "common/run/frame_bounds.hpp"
+#include "common/topology/contact_degeneracy.hpp"
 
 namespace fnet {
 
@@ -9,6 +13,15 @@ DiagramOutcome DiagramJob::run() const {
   DiagramOutcome out{index, std::nullopt, {}};
   try {
     validate(*frame);
+    if (max_contacts_per_grain > 0) {
+      if (const std::size_t k = contact_degeneracy(*frame); k > max_contacts_per_grain)
+        throw FrameError(frame->label + ": " + std::to_string(k) +
+                         " contacts per grain (the contact graph's degeneracy: some set of grains has each "
+                         "touching that many others of the set) exceed the bound of " +
+                         std::to_string(max_contacts_per_grain) +
+                         "; grains that do not overlap reach at most 5 (disks) "
+                         "or 12 (spheres)");
+    }
     out.diagrams = analyze_frame(*frame, threads);
   } catch (const std::exception& e) {
     out.reason = e.what();
@@ -20,8 +33,8 @@ DistanceOutcome DistanceJob::run() const {
   return {index, step_distances(*previous, *current, essential, threads, delta)};
 }
 
-RunPipeline::RunPipeline(std::chrono::milliseconds gap_timeout, EssentialConvention essential)
-    : gap_timeout_(gap_timeout), essential_(essential) {}
+RunPipeline::RunPipeline(std::chrono::milliseconds gap_timeout, EssentialConvention essential, FrameRules rules)
+    : gap_timeout_(gap_timeout), essential_(essential), rules_(rules) {}
 
 void RunPipeline::resume(const std::vector<std::uint32_t>& settled,
                          std::shared_ptr<const AnalyzedFrame> last_accepted) {
@@ -30,25 +43,46 @@ void RunPipeline::resume(const std::vector<std::uint32_t>& settled,
   last_accepted_ = std::move(last_accepted);
 }
 
-RunPipeline::Admission RunPipeline::admit(RunFrame frame, PipelineClock::time_point now) {
-  const std::uint32_t index = frame.header.index;
+std::optional<RunPipeline::Admission> RunPipeline::arrival(std::uint32_t index, const std::string& label) {
   if (!seen_.insert(index).second) {
     ++counts_.duplicates;
-    return {Arrival::duplicate, std::nullopt};
+    return Admission{Arrival::duplicate, std::nullopt, {}};
   }
   if (index < frontier_) {  // its place was given up after the gap timeout
     ++counts_.late;
     ++counts_.rejected;
-    settled_.push_back(RejectedFrame{index, frame.frame.label + ": arrived after the gap timeout had skipped it"});
-    return {Arrival::late, std::nullopt};
+    settled_.push_back(RejectedFrame{index, label + ": arrived after the gap timeout had skipped it"});
+    return Admission{Arrival::late, std::nullopt, {}};
   }
+  return std::nullopt;
+}
+
+RunPipeline::Admission RunPipeline::admit(RunFrame frame, PipelineClock::time_point now) {
+  const std::uint32_t index = frame.header.index;
+  if (const std::string problem = header_problem(frame.header); !problem.empty())
+    return refuse(frame.header, frame.frame.label + ": header rejected: " + problem, now);
+  if (auto settled = arrival(index, frame.frame.label)) return std::move(*settled);
   Slot& slot = pending_[index];
   slot.frame = std::make_shared<AnalyzedFrame>();
   slot.frame->header = frame.header;
   slot.frame->dimension = frame.frame.dimension;
+  slot.bytes = frame_bytes(frame.frame.particle_count, frame.frame.contacts.size());
+  pending_bytes_ += slot.bytes;
   slot.frame->network = std::make_shared<const Frame>(std::move(frame.frame));
   slot.arrived = now;
-  return {Arrival::queued, DiagramJob{index, slot.frame->network}};
+  DiagramJob job{index, slot.frame->network};
+  job.max_contacts_per_grain = rules_.max_contacts_per_grain;
+  return {Arrival::queued, std::move(job), {}};
+}
+
+RunPipeline::Admission RunPipeline::refuse(const FrameHeader& header, std::string reason,
+                                           PipelineClock::time_point now) {
+  if (auto settled = arrival(header.index, frame_label(header.run_id, header.index))) return std::move(*settled);
+  Slot& slot = pending_[header.index];
+  slot.stage = Stage::rejected;
+  slot.reason = std::move(reason);
+  slot.arrived = now;
+  return {Arrival::refused, std::nullopt, advance()};
 }
 
 std::vector<DistanceJob> RunPipeline::analyzed(DiagramOutcome outcome) {
@@ -60,6 +94,7 @@ std::vector<DistanceJob> RunPipeline::analyzed(DiagramOutcome outcome) {
     slot.reason = std::move(outcome.reason);
     slot.stage = Stage::rejected;
     slot.frame->network.reset();
+    pending_bytes_ -= std::exchange(slot.bytes, 0);
   }
   return advance();
 }
@@ -109,6 +144,7 @@ void RunPipeline::settle() {
     } else {
       break;  // still analyzing or measuring
     }
+    pending_bytes_ -= slot.bytes;
     pending_.erase(it);
   }
 }
@@ -153,6 +189,7 @@ void RunPipeline::run_inline(std::vector<DistanceJob> jobs) {
 std::vector<Settlement> RunPipeline::push(RunFrame frame, PipelineClock::time_point now) {
   Admission admission = admit(std::move(frame), now);
   if (admission.job) run_inline(analyzed(admission.job->run()));
+  run_inline(std::move(admission.distance_jobs));
   return take_settled();
 }
 

@@ -43,6 +43,8 @@ struct DiagramJob {
   std::uint32_t index = 0;
   std::shared_ptr<const Frame> frame;
   int threads = 1;  // > 1: the two networks at once (analyze_frame)
+  // > 0: a frame whose contacts per grain (contact_degeneracy) exceed it is rejected unanalyzed.
+  std::size_t max_contacts_per_grain = 0;
   DiagramOutcome run() const;
 };
 
@@ -76,16 +78,24 @@ struct PipelineCounts {
   std::size_t accepted = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0;  // rejected includes late
 };
 
+// What a frame may hold to be analyzed, besides validity (validate()) and its header's ranges
+// (header_problem(), always checked).
+struct FrameRules {
+  std::size_t max_contacts_per_grain = 0;  // > 0: DiagramJob::max_contacts_per_grain
+};
+
 class RunPipeline {
  public:
-  enum class Arrival { queued, duplicate, late };
+  // refused: rejected on arrival (its header, or the caller's refusal), settled in its place.
+  enum class Arrival { queued, duplicate, late, refused };
   struct Admission {
     Arrival arrival = Arrival::queued;
-    std::optional<DiagramJob> job;  // present when queued
+    std::optional<DiagramJob> job;           // present when queued
+    std::vector<DistanceJob> distance_jobs;  // when refused: those its settlement made possible
   };
 
   explicit RunPipeline(std::chrono::milliseconds gap_timeout = std::chrono::seconds(30),
-                       EssentialConvention essential = EssentialConvention::floor);
+                       EssentialConvention essential = EssentialConvention::floor, FrameRules rules = {});
 
   // Continues a run whose frames `settled` were accepted or rejected earlier (a reloaded store),
   // the distances of the next accepted frame measured from `last_accepted` (if any). Only before
@@ -93,8 +103,13 @@ class RunPipeline {
   void resume(const std::vector<std::uint32_t>& settled, std::shared_ptr<const AnalyzedFrame> last_accepted);
 
   // A frame arriving at `now`: a repeated index is a duplicate and dropped; an index whose place
-  // was skipped is settled as rejected (late); any other waits for its diagram job's outcome.
+  // was skipped is settled as rejected (late); a frame whose header is out of range
+  // (header_problem) is refused; any other waits for its diagram job's outcome.
   Admission admit(RunFrame frame, PipelineClock::time_point now);
+  // The frame of `header` arrived at `now` but was refused before it was read whole, for `reason`:
+  // settled as rejected in its place (or dropped as a duplicate, or rejected as late, as admit()
+  // would).
+  Admission refuse(const FrameHeader& header, std::string reason, PipelineClock::time_point now);
   // Hands back a diagram job's outcome; returns the distance jobs it made possible.
   std::vector<DistanceJob> analyzed(DiagramOutcome outcome);
   // Hands back a distance job's outcome.
@@ -112,10 +127,11 @@ class RunPipeline {
   // One thread, at the end of a run: nothing more will arrive, so every gap is skipped now.
   std::vector<Settlement> finish();
 
-  // Frames admitted and not yet settled.
+  // Frames admitted and not yet settled, and the bytes they hold (frame_bytes).
   std::size_t pending() const { return pending_.size(); }
   // Every frame index below it is settled (or skipped).
   std::uint32_t frontier() const { return frontier_; }
+  std::size_t pending_bytes() const { return pending_bytes_; }
   std::optional<PipelineClock::time_point> oldest_arrival() const;
   const PipelineCounts& counts() const { return counts_; }
 
@@ -126,8 +142,11 @@ class RunPipeline {
     std::shared_ptr<AnalyzedFrame> frame;  // its diagrams are written once, in analyzed()
     std::string reason;
     PipelineClock::time_point arrived;
+    std::size_t bytes = 0;  // of its network, while the slot holds it
   };
 
+  // A duplicate or late arrival, settled as such; nullopt for a frame that takes a slot.
+  std::optional<Admission> arrival(std::uint32_t index, const std::string& label);
   std::vector<DistanceJob> advance();
   std::optional<std::vector<DistanceJob>> skip_one(bool always, PipelineClock::time_point now);
   void settle();
@@ -135,12 +154,14 @@ class RunPipeline {
 
   std::chrono::milliseconds gap_timeout_;
   EssentialConvention essential_;
+  FrameRules rules_;
   std::set<std::uint32_t> seen_;
   std::map<std::uint32_t, Slot> pending_;
   std::uint32_t frontier_ = 0;  // the next index to resolve: every frame before it is resolved
   std::shared_ptr<const AnalyzedFrame> last_accepted_;
   std::deque<Settlement> settled_;
   PipelineCounts counts_;
+  std::size_t pending_bytes_ = 0;
 };
 
 }  // namespace fnet

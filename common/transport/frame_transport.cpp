@@ -6,6 +6,7 @@
 #include <string>
 #include <thread>
 
+#include "common/run/frame_bounds.hpp"
 #include "common/run/particle_columns.hpp"
 #include "fnet.h"
 
@@ -97,26 +98,29 @@ RunInfo decode(const fnet_RunInfo& s) {
   return info;
 }
 
-// Takes everything available from `reader` as loans, decoding each valid sample.
+// Takes what is available from `reader` as loans, `batch` samples at a time, handing each valid
+// sample to `sink` until it returns false.
 template <class Sample, class Sink>
-void take_all(dds_entity_t reader, std::size_t max_samples, Sink sink) {
+void take_all(dds_entity_t reader, std::size_t batch, Sink sink) {
   constexpr std::size_t kBatch = 64;
   void* samples[kBatch];
   dds_sample_info_t infos[kBatch];
-  std::size_t taken = 0;
-  while (taken < max_samples) {
+  const std::size_t want = std::clamp<std::size_t>(batch, 1, kBatch);
+  bool more = true;
+  while (more) {
     samples[0] = nullptr;
-    const std::size_t want = std::min(kBatch, max_samples - taken);
     const dds_return_t n = dds_take(reader, samples, infos, want, static_cast<std::uint32_t>(want));
     if (n < 0) throw Error("dds_take", n);
     if (n == 0) return;
     for (dds_return_t k = 0; k < n; ++k)
-      if (infos[k].valid_data) {  // disposals and unregistrations carry no data
-        sink(*static_cast<const Sample*>(samples[k]));
-        ++taken;
-      }
+      if (infos[k].valid_data) more = sink(*static_cast<const Sample*>(samples[k])) && more;
     dds_return_loan(reader, samples, n);
   }
+}
+
+// The bytes a frame sample holds once decoded (frame_bytes), from its sequences' lengths alone.
+std::size_t sample_bytes(const fnet_ForceFrame& s) {
+  return frame_bytes(s.particle_count, s.contact_pairs._length / 2, s.wall_contact_particles._length);
 }
 
 // The two topics, created alike by the publisher and the subscriber.
@@ -231,8 +235,9 @@ bool FramePublisher::wait_for_acks(dds_duration_t timeout) const {
   return a == DDS_RETCODE_OK && b == DDS_RETCODE_OK;
 }
 
-FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_buffered)
-    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {
+FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_buffered, FrameSizeBound bound)
+    : participant_(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")),
+      bound_(std::move(bound)) {
   const auto [info_topic, frame_topic] = create_topics(participant_.get());
   Qos info_qos, frame_qos;
   set_qos(info_qos, false, DDS_LENGTH_UNLIMITED);
@@ -252,18 +257,35 @@ FrameSubscriber::FrameSubscriber(dds_domainid_t domain, std::int32_t max_frames_
 
 void FrameSubscriber::publish(const RunStatus& status) { status_->write(status); }
 
-Received FrameSubscriber::take(dds_duration_t timeout, std::size_t max_frames) {
+Received FrameSubscriber::take(dds_duration_t timeout, std::size_t max_frames, std::size_t max_bytes) {
   const dds_return_t rc = dds_waitset_wait(waitset_, nullptr, 0, timeout);
   if (rc < 0) throw Error("dds_waitset_wait", rc);
   Received out;
   // Announcements first; a frame may still precede its run's announcement (separate topics).
-  take_all<fnet_RunInfo>(info_reader_, SIZE_MAX, [&](const fnet_RunInfo& s) { out.infos.push_back(decode(s)); });
-  take_all<fnet_ForceFrame>(frame_reader_, max_frames, [&](const fnet_ForceFrame& s) {
+  take_all<fnet_RunInfo>(info_reader_, SIZE_MAX, [&](const fnet_RunInfo& s) {
+    out.infos.push_back(decode(s));
+    return true;
+  });
+  if (max_frames == 0 || max_bytes == 0) return out;
+  // One frame at a time, so that none is taken beyond the budgets.
+  std::size_t frames = 0, bytes = 0;
+  take_all<fnet_ForceFrame>(frame_reader_, 1, [&](const fnet_ForceFrame& s) {
+    const std::size_t size = sample_bytes(s);
+    if (size > bound_.max_bytes) {
+      out.refused.push_back({{s.run_id, s.frame, s.step, s.time, s.rho, s.z},
+                             frame_label(s.run_id, s.frame) + ": refused unread: its " +
+                                 std::to_string(s.particle_count) + " grains and " +
+                                 std::to_string(s.contact_pairs._length / 2) + " contacts hold " + mebibytes(size) +
+                                 ", above " + bound_.name + ", " + mebibytes(bound_.max_bytes)});
+      return true;
+    }
     try {
       out.frames.push_back(decode(s));
     } catch (const FrameError& e) {
       out.malformed.emplace_back(e.what());
     }
+    bytes += size;
+    return ++frames < max_frames && bytes < max_bytes;
   });
   return out;
 }

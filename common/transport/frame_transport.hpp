@@ -48,10 +48,25 @@ class FramePublisher {
   RunStatusReader status_;
 };
 
+// A frame taken from DDS but not decoded: its header, and why (it names the run, the frame and
+// the bound).
+struct RefusedFrame {
+  FrameHeader header;
+  std::string reason;
+};
+
 struct Received {
   std::vector<RunInfo> infos;
   std::vector<RunFrame> frames;
+  std::vector<RefusedFrame> refused;
   std::vector<std::string> malformed;  // samples that could not be decoded, with the reason
+};
+
+// The largest frame a subscriber decodes (frame_bytes of its grains, contacts and wall contacts);
+// `name` says where the bound is set, in the reason of a refusal.
+struct FrameSizeBound {
+  std::size_t max_bytes = SIZE_MAX;
+  std::string name = "the frame size bound";
 };
 
 class FrameSubscriber {
@@ -59,10 +74,12 @@ class FrameSubscriber {
   // max_frames_buffered: DDS resource limit on frames held by this reader before the writer waits
   // (DDS_LENGTH_UNLIMITED for none).
   explicit FrameSubscriber(dds_domainid_t domain = DDS_DOMAIN_DEFAULT,
-                           std::int32_t max_frames_buffered = DDS_LENGTH_UNLIMITED);
+                           std::int32_t max_frames_buffered = DDS_LENGTH_UNLIMITED, FrameSizeBound bound = {});
 
-  // Waits up to `timeout` for data, then takes everything available (at most max_frames frames).
-  Received take(dds_duration_t timeout, std::size_t max_frames = SIZE_MAX);
+  // Waits up to `timeout` for data, then takes everything available, frames one at a time until
+  // max_frames are taken or the frames taken hold max_bytes (frame_bytes): the frame that reaches
+  // it is the last. A frame larger than the bound is refused unread (Received::refused).
+  Received take(dds_duration_t timeout, std::size_t max_frames = SIZE_MAX, std::size_t max_bytes = SIZE_MAX);
   // Tells the publishers of status.run_id how far the run is in this reader's store (thread-safe).
   void publish(const RunStatus& status);
 
@@ -70,6 +87,7 @@ class FrameSubscriber {
   Entity participant_;
   dds_entity_t info_reader_ = 0, frame_reader_ = 0, waitset_ = 0;
   std::optional<RunStatusWriter> status_;  // made after the participant
+  FrameSizeBound bound_;
 };
 
 }  // namespace fnet::dds

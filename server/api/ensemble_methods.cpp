@@ -131,6 +131,7 @@ json curve_head(const CurveRequest& r, const Curve& c) {
   else
     out["bin_width"] = r.binning.width;
   if (r.axis == CurveAxis::rho_minus_rho_j) out["runs_without_rho_j"] = strings(c.runs_without_rho_j);
+  if (!c.left_out.empty()) out["left_out"] = strings(c.left_out);
   return out;
 }
 

@@ -13,7 +13,6 @@
 #include <string>
 #include <thread>
 
-#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 
 #include "server/api/api_methods.hpp"
@@ -32,6 +31,7 @@ RegistryLimits registry_limits(const ServerOptions& o) {
   limits.gap_timeout = std::chrono::milliseconds(static_cast<long>(o.gap_timeout * 1000));
   limits.store_retry = std::chrono::milliseconds(static_cast<long>(o.store_retry * 1000));
   limits.store_idle = std::chrono::milliseconds(static_cast<long>(o.store_idle * 1000));
+  limits.max_contacts_per_grain = o.max_contacts_per_grain;
   return limits;
 }
 
@@ -137,12 +137,14 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   try {
     boost::asio::thread_pool pool(o.threads);
-    Registry registry(o.data_dir, pool, registry_limits(o));
+    // The runs' analysis and the API's heavy queries share the pool, served in turn.
+    FairScheduler scheduler(pool, o.threads);
+    Registry registry(o.data_dir, scheduler, registry_limits(o));
     load_stores(registry);
     boost::asio::io_context io;
     ApiContext context{registry};
     context.max_subscriptions_per_connection = o.max_subscriptions;
-    context.offload = [&pool](std::function<void()> work) { boost::asio::post(pool, std::move(work)); };
+    context.offload = [&scheduler](std::function<void()> work) { scheduler.post(kApiQueue, std::move(work)); };
     const fnet::rpc::Handler api = make_api(context);
     const fnet::rpc::Access access{o.token};
     fnet::rpc::Server server(io, o.bind, o.port, api, o.limits, access);
@@ -151,7 +153,8 @@ int main(int argc, char** argv) {
     context.connections = [&server, &dashboard] {
       return server.connections() + (dashboard ? dashboard->connections() : 0);
     };
-    Ingest ingest(registry, {static_cast<dds_domainid_t>(o.domain), o.max_in_flight});
+    Ingest ingest(registry, {static_cast<dds_domainid_t>(o.domain), o.max_in_flight, o.max_in_flight_mib << 20,
+                             o.max_frame_mib << 20});
     context.ingest_state = [&ingest] { return ingest.state(); };
     std::cout << "fnet-server listening on " << o.bind << ":" << server.port() << " data-dir " << o.data_dir
               << std::endl;

@@ -16,6 +16,11 @@
 namespace po = boost::program_options;
 
 namespace fnet::server {
+namespace {
+
+constexpr std::size_t kMaxMib = std::size_t{1} << 20;  // MiB counts stay far from overflowing in bytes
+
+}  // namespace
 
 namespace {
 
@@ -71,10 +76,18 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "threads", po::value(&o.threads)->default_value(o.threads), "analysis threads")(
       "domain", po::value(&o.domain)->default_value(o.domain), "DDS domain id")(
       "max-in-flight", po::value(&o.max_in_flight)->default_value(o.max_in_flight),
-      "frames held for analysis at once; beyond it DDS makes the simulation wait (about 150 KB per "
-      "2 000-particle frame, counted twice: here and in the DDS reader)")(
-      "gap-timeout", po::value(&o.gap_timeout)->default_value(o.gap_timeout),
-      "seconds to wait for a missing frame before skipping it")(
+      "frames held for analysis at once; beyond it DDS makes the simulation wait (about 200 KB per "
+      "2 000-particle frame)")("max-in-flight-mib", po::value(&o.max_in_flight_mib)->default_value(o.max_in_flight_mib),
+                               "MiB of frames held for analysis at once (32 bytes per grain and per contact); beyond "
+                               "it DDS makes the simulation wait, and the DDS reader holds about as much again")(
+      "max-frame-mib", po::value(&o.max_frame_mib)->default_value(o.max_frame_mib),
+      "largest frame analyzed, in MiB (32 bytes per grain and per contact: 64 MiB is a million of each); a larger "
+      "frame is rejected unread, with its reason")(
+      "max-contacts-per-grain", po::value(&o.max_contacts_per_grain)->default_value(o.max_contacts_per_grain),
+      "a frame whose grains, taken one at a time, each touch more than this many grains not yet taken (its contact "
+      "graph's degeneracy) is rejected unanalyzed; grains that do not overlap reach 5 (disks) or 12 (spheres) "
+      "whatever their sizes (0: no bound)")("gap-timeout", po::value(&o.gap_timeout)->default_value(o.gap_timeout),
+                                            "seconds to wait for a missing frame before skipping it")(
       "store-retry", po::value(&o.store_retry)->default_value(o.store_retry),
       "seconds between retries of a run's store that cannot be written (a full disk, no file descriptor left); "
       "its frames wait in memory, counted with --max-in-flight")(
@@ -107,7 +120,11 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
         throw po::error(std::string("--token-file: ") + e.what());
       }
     }
-    if (o.threads == 0 || o.max_in_flight == 0) throw po::error("--threads and --max-in-flight must be positive");
+    if (o.threads == 0 || o.max_in_flight == 0 || o.max_in_flight_mib == 0 || o.max_frame_mib == 0)
+      throw po::error("--threads, --max-in-flight, --max-in-flight-mib and --max-frame-mib must be positive");
+    if (o.max_in_flight_mib > kMaxMib || o.max_frame_mib > kMaxMib)
+      throw po::error("--max-in-flight-mib and --max-frame-mib must be at most " + std::to_string(kMaxMib) +
+                      " (1 TiB)");
     for (const auto& [flag, seconds] :
          {std::pair{"--store-retry", o.store_retry}, std::pair{"--store-idle", o.store_idle},
           std::pair{"--stop-timeout", o.stop_timeout}})

@@ -1,6 +1,7 @@
 #include "server/query/curve_query.hpp"
 
 #include "common/analysis/jamming.hpp"
+#include "common/run/frame_bounds.hpp"
 
 namespace fnet::query {
 namespace {
@@ -26,6 +27,12 @@ Curve compute_curve(const FrameLookup& frames, const CurveRequest& r, StepCache&
     members.push_back({r.run, std::move(*committed)});
   }
   Curve c;
+  for (MemberRun& m : members)
+    std::erase_if(m.frames, [&](const std::shared_ptr<const AnalyzedFrame>& f) {
+      const std::string problem = header_problem(f->header);
+      if (!problem.empty()) c.left_out.push_back(frame_label(m.run_id, f->header.index) + ": left out: " + problem);
+      return !problem.empty();
+    });
   std::vector<CurveSample> numerator, denominator;
   for (const MemberRun& m : members) {
     double shift = 0;

@@ -32,6 +32,9 @@ struct Curve {
   // With CurveAxis::rho_minus_rho_j, the members left out: their frames give no rho_J.
   std::vector<std::string> runs_without_rho_j;
   std::vector<CurveBin> bins;
+  // The members' frames left out, each with why: a header no curve can place (header_problem),
+  // which a store written before headers were checked may hold.
+  std::vector<std::string> left_out;
 };
 
 // Over the members as they are now (no members, no bins: an unknown run or ensemble is not an

@@ -1,7 +1,9 @@
 // The DDS side of fnet-server: one thread takes run announcements and frames and hands them to
-// the registry. Memory stays bounded: it takes frames only while fewer than max_in_flight are
-// being analyzed, and the DDS reader holds at most max_in_flight more (its resource limit), after
-// which the simulation's writer waits — back-pressure instead of an unbounded buffer.
+// the registry. Memory stays bounded in frames and in bytes: it takes frames only while fewer than
+// max_in_flight, holding less than max_in_flight_bytes, are being analyzed (the frame that reaches
+// the bytes is the last taken), and the DDS reader holds at most reader_frames() more (its
+// resource limit), after which the simulation's writer waits — back-pressure instead of an
+// unbounded buffer. A frame above max_frame_bytes is refused unread, rejected in its run.
 #pragma once
 
 #include <atomic>
@@ -21,7 +23,13 @@ namespace fnet::server {
 struct IngestOptions {
   dds_domainid_t domain = DDS_DOMAIN_DEFAULT;
   std::size_t max_in_flight = 64;
+  std::size_t max_in_flight_bytes = std::size_t{512} << 20;
+  std::size_t max_frame_bytes = std::size_t{64} << 20;
 };
+
+// The DDS reader's limit: as many of the largest frames as max_in_flight_bytes holds (at least
+// one), at most max_in_flight. So the reader holds at most about max_in_flight_bytes too.
+std::size_t reader_frames(const IngestOptions& options);
 
 class Ingest {
  public:

@@ -2,23 +2,32 @@
 
 #include <algorithm>
 #include <iostream>
+#include <thread>
 #include <type_traits>
 #include <utility>
 #include <variant>
 
-#include <boost/asio/post.hpp>
-
 #include "common/analysis/jamming.hpp"
 #include "common/run/run_names.hpp"
+#include "server/registry/announcement_check.hpp"
 
 namespace fnet::server {
 
+Registry::Registry(std::filesystem::path data_dir, FairScheduler& scheduler, RegistryLimits limits)
+    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits) {
+  std::filesystem::create_directories(data_dir_);
+}
+
 Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits)
-    : data_dir_(std::move(data_dir)), pool_(pool), limits_(limits) {
+    : data_dir_(std::move(data_dir)),
+      own_scheduler_(std::make_unique<FairScheduler>(pool, std::max(1u, std::thread::hardware_concurrency()))),
+      scheduler_(*own_scheduler_),
+      limits_(limits) {
   std::filesystem::create_directories(data_dir_);
 }
 
 Registry::~Registry() {
+  if (own_scheduler_) own_scheduler_->wait_idle();  // its jobs use this registry
   std::unique_lock lock(mutex_);
   flushed_.wait(lock, [this] { return flushing_ == 0; });
 }
@@ -230,7 +239,8 @@ Registry::Run& Registry::run_locked(const std::string& run_id) {
   if (created) {
     run.run_id = run_id;
     run.info.run_id = run_id;
-    run.pipeline = RunPipeline(limits_.gap_timeout);
+    run.pipeline = RunPipeline(limits_.gap_timeout, EssentialConvention::floor,
+                               FrameRules{.max_contacts_per_grain = limits_.max_contacts_per_grain});
     run.store = std::make_shared<RunStore>(store_path(data_dir_, run_id), run_id);
   }
   return run;
@@ -244,9 +254,10 @@ void Registry::note_rejection_locked(std::string reason) {
 
 void Registry::on_info(const RunInfo& info) {
   const auto listener = locked_then_deliver([&]() -> std::function<void(const RunInfo&)> {
-    if (const std::string problem = run_id_problem(info.run_id); !problem.empty()) {
+    if (const std::string problem = announcement_problem(info); !problem.empty()) {
       ++counters_.malformed;
       note_rejection_locked("run announcement rejected: " + problem);
+      std::cerr << "fnet-server: run announcement rejected: " << problem << "\n";
       return nullptr;
     }
     Run& run = run_locked(info.run_id);
@@ -272,35 +283,52 @@ void Registry::on_malformed(const std::string& reason) {
   note_rejection_locked(reason);
 }
 
+template <class Admit>
+void Registry::arrive_locked(const FrameHeader& header, const std::string& label, Admit&& admit) {
+  ++counters_.received;
+  if (const std::string problem = run_id_problem(header.run_id); !problem.empty()) {
+    ++counters_.malformed;
+    note_rejection_locked(label + ": rejected: " + problem);
+    return;
+  }
+  Run& run = run_locked(header.run_id);
+  run.contacted = true;
+  run.last_activity = store_time_now();
+  RunPipeline::Admission admission = admit(run.pipeline);
+  switch (admission.arrival) {
+    case RunPipeline::Arrival::duplicate:
+      ++counters_.duplicates;
+      return;
+    case RunPipeline::Arrival::late:
+      ++counters_.late;
+      break;
+    case RunPipeline::Arrival::queued:
+      post_locked(run, std::move(*admission.job));
+      break;
+    case RunPipeline::Arrival::refused:
+      post_locked(run, std::move(admission.distance_jobs));
+      break;
+  }
+  publish_locked(run);
+}
+
 void Registry::on_frame(RunFrame frame) {
   locked_then_deliver([&] {
-    ++counters_.received;
-    if (const std::string problem = run_id_problem(frame.header.run_id); !problem.empty()) {
-      ++counters_.malformed;
-      note_rejection_locked(frame.frame.label + ": rejected: " + problem);
-      return;
-    }
-    Run& run = run_locked(frame.header.run_id);
-    run.contacted = true;
-    run.last_activity = store_time_now();
-    RunPipeline::Admission admission = run.pipeline.admit(std::move(frame), Clock::now());
-    switch (admission.arrival) {
-      case RunPipeline::Arrival::duplicate:
-        ++counters_.duplicates;
-        return;
-      case RunPipeline::Arrival::late:
-        ++counters_.late;
-        break;
-      case RunPipeline::Arrival::queued:
-        post_locked(run, std::move(*admission.job));
-        break;
-    }
-    publish_locked(run);
+    const FrameHeader header = frame.header;
+    arrive_locked(header, frame.frame.label,
+                  [&](RunPipeline& pipeline) { return pipeline.admit(std::move(frame), Clock::now()); });
+  });
+}
+
+void Registry::on_refused(const FrameHeader& header, const std::string& reason) {
+  locked_then_deliver([&] {
+    arrive_locked(header, frame_label(header.run_id, header.index),
+                  [&](RunPipeline& pipeline) { return pipeline.refuse(header, reason, Clock::now()); });
   });
 }
 
 void Registry::post_locked(const Run& run, DiagramJob job) {
-  boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+  scheduler_.post(run_queue(run.run_id), [this, id = run.run_id, job = std::move(job)] {
     DiagramOutcome outcome = job.run();
     locked_then_deliver([&] {
       Run& r = runs_.at(id);
@@ -312,7 +340,7 @@ void Registry::post_locked(const Run& run, DiagramJob job) {
 
 void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
   for (DistanceJob& job : jobs)
-    boost::asio::post(pool_, [this, id = run.run_id, job = std::move(job)] {
+    scheduler_.post(run_queue(run.run_id), [this, id = run.run_id, job = std::move(job)] {
       const DistanceOutcome outcome = job.run();
       locked_then_deliver([&] {
         Run& r = runs_.at(id);
@@ -444,6 +472,13 @@ std::size_t Registry::stores_open() const {
   std::lock_guard lock(mutex_);
   std::size_t n = 0;
   for (const auto& [id, run] : runs_) n += run.store->open();
+  return n;
+}
+
+std::size_t Registry::in_flight_bytes() const {
+  std::lock_guard lock(mutex_);
+  std::size_t n = 0;
+  for (const auto& [id, run] : runs_) n += run.pipeline.pending_bytes();
   return n;
 }
 

@@ -34,6 +34,7 @@
 #include "common/run/run_frame.hpp"
 #include "common/run/run_status.hpp"
 #include "common/store/analysis_store.hpp"
+#include "server/registry/fair_scheduler.hpp"
 #include "server/registry/run_store.hpp"
 #include "server/registry/subscriber.hpp"
 
@@ -73,10 +74,14 @@ struct RegistryLimits {
   std::size_t reasons_kept = 100;                // most recent rejection reasons reported by status
   std::chrono::milliseconds store_retry{2000};   // a store at fault is retried this often
   std::chrono::milliseconds store_idle{600000};  // a store written to no more for this long is closed
+  std::size_t max_contacts_per_grain = 24;       // FrameRules; 0: no bound
 };
 
 class Registry {
  public:
+  // The analysis jobs of each run go to `scheduler` in the run's own queue (run_queue).
+  Registry(std::filesystem::path data_dir, FairScheduler& scheduler, RegistryLimits limits = {});
+  // With a scheduler of its own over `pool`, taking as many threads at once as the machine has.
   Registry(std::filesystem::path data_dir, boost::asio::thread_pool& pool, RegistryLimits limits = {});
   // Waits until what was committed is written to the stores and delivered. The pool's jobs must
   // have ended (the server joins the pool first).
@@ -102,13 +107,16 @@ class Registry {
   // (the ensemble subscriptions, which must then recompute even when the run commits nothing more).
   void on_announcement(std::function<void(const RunInfo&)> listener);
   void on_frame(RunFrame frame);
+  // A frame refused before it was read whole (too large): rejected in its run, in its place.
+  void on_refused(const FrameHeader& header, const std::string& reason);
   void on_malformed(const std::string& reason);
   // Skips frames missing for longer than the gap timeout; call periodically.
   void check_gaps();
 
-  // Frames received and not yet committed, over all runs (the ingest's back-pressure measure):
-  // in analysis, or waiting for their store.
+  // Frames received and not yet committed, over all runs (in analysis, or waiting for their
+  // store), and the bytes they hold (frame_bytes): the ingest's back-pressure measures.
   std::size_t in_flight() const;
+  std::size_t in_flight_bytes() const;
 
   // Call periodically (from one thread): retries the stores at fault whose turn has come, closes
   // the stores of finished and idle runs, and returns the status of each run contacted since the
@@ -188,6 +196,10 @@ class Registry {
   void mark_locked(const std::shared_ptr<Outbox>& outbox);
   // The next points of a subscription, at most `limit`, in frame order per run.
   std::vector<SeriesPoint> page(Outbox& outbox, std::size_t limit) const;
+  // The registry's part of a frame's arrival (on_frame, on_refused): the counters, the run id's
+  // check, the run's activity, then the admission `admit` makes and the jobs it allows.
+  template <class Admit>
+  void arrive_locked(const FrameHeader& header, const std::string& label, Admit&& admit);
   // Runs `f` under the lock; then, off the lock, writes out the stores it queued writes to and
   // delivers the points it queued (a subscriber sees a point once its frame is in the store).
   template <class F>
@@ -213,7 +225,8 @@ class Registry {
   RunSummary summary_locked(const std::string& id, const Run& run) const;
 
   const std::filesystem::path data_dir_;
-  boost::asio::thread_pool& pool_;
+  std::unique_ptr<FairScheduler> own_scheduler_;  // with the pool constructor only
+  FairScheduler& scheduler_;
   const RegistryLimits limits_;
   // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
   // runs it adopts there. Reads the files off the lock.

@@ -111,11 +111,11 @@ def main():
             deadline = time.monotonic() + 45
             while follow.poll() is None and time.monotonic() < deadline:
                 log = os.path.join(work, "log.lammps")
+                # The count is live only if the log still says LAMMPS runs after it was read.
+                analyzed = max([r["frames"] for r in c.runs() if r["run"] == run_id], default=0)
                 finished = finished or (os.path.exists(log) and "Total wall time" in open(log).read())
                 if not finished:
-                    for r in c.runs():
-                        if r["run"] == run_id:
-                            seen_live = max(seen_live, r["frames"])
+                    seen_live = max(seen_live, analyzed)
                 time.sleep(0.05)
             check(follow.poll() == 0, f"the follow block ran: exit {follow.poll()} "
                   f"({open(os.path.join(work, 'follow.log')).read()[-600:]})")

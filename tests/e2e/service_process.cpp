@@ -54,11 +54,11 @@ fs::path lammps_run(const fs::path& dir, const std::vector<int>& source,
 }
 
 ServerProcess start_server(const fs::path& data_dir, int domain, const fs::path& log,
-                           const std::vector<std::string>& flags) {
+                           const std::vector<std::string>& flags, const std::string& program) {
   std::vector<std::string> args{"--data-dir", data_dir.string(), "--port", "0", "--domain", std::to_string(domain)};
   args.insert(args.end(), flags.begin(), flags.end());
   ServerProcess s;
-  s.process = std::make_unique<Process>(FNET_SERVER, args, log, dds_environment());
+  s.process = std::make_unique<Process>(program, args, log, dds_environment());
   const auto line = s.process->read_line(30s);
   if (!line) throw std::runtime_error("fnet-server did not start; see " + log.string());
   std::smatch m;

@@ -30,9 +30,11 @@ struct ServerProcess {
 };
 
 // fnet-server on `data_dir` and DDS `domain`, listening on the port it picked (given port 0), read
-// from its first line; `flags` follow. Throws, naming the log, when it does not start.
+// from its first line; `flags` follow; `program` is the build's fnet-server unless given. Throws,
+// naming the log, when it does not start.
 ServerProcess start_server(const std::filesystem::path& data_dir, int domain, const std::filesystem::path& log,
-                           const std::vector<std::string>& flags = {"--threads", "2"});
+                           const std::vector<std::string>& flags = {"--threads", "2"},
+                           const std::string& program = FNET_SERVER);
 
 // fnet-analyze store of the run folder into `data_dir`: its exit code, nullopt if it did not end.
 std::optional<int> store_run(const std::filesystem::path& run_dir, const std::string& run_id,

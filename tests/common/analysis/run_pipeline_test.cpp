@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/run/frame_bounds.hpp"
 #include "tests/support/small_frames.hpp"
 
 namespace fnet {
@@ -272,6 +274,128 @@ TEST(RunPipeline, AResumedRunContinuesFromItsLastAcceptedFrame) {
   ASSERT_EQ(got.accepted.size(), 1u);
   EXPECT_EQ(got.accepted[0]->previous, 2u);
   EXPECT_EQ(got.accepted[0]->distances.value, expected_distances(2, 4).value);
+}
+
+}  // namespace
+}  // namespace fnet
+
+namespace fnet {
+namespace {
+
+// The frames of a run whose frame 2 has a header no series can use: each value alone.
+TEST(RunPipeline, AFrameWithAHeaderOutOfRangeIsRejectedInItsPlaceAndTheNextIsMeasuredFromTheLastAccepted) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<std::function<void(FrameHeader&)>, std::string>> planted = {
+      {[&](FrameHeader& h) { h.rho = nan; }, "rho = nan is not a finite number in [0, 2]"},
+      {[](FrameHeader& h) { h.rho = 1e300; }, "rho = 1e+300 is not a finite number in [0, 2]"},
+      {[](FrameHeader& h) { h.rho = -0.1; }, "rho = -0.1 is not a finite number in [0, 2]"},
+      {[&](FrameHeader& h) { h.z = inf; }, "z = inf is not a finite number in [0, 48]"},
+      {[](FrameHeader& h) { h.z = 1e9; }, "z = 1e+09 is not a finite number in [0, 48]"},
+      {[&](FrameHeader& h) { h.time = nan; }, "time = nan is not a finite number >= 0"},
+      {[](FrameHeader& h) { h.time = -1; }, "time = -1 is not a finite number >= 0"},
+      {[](FrameHeader& h) { h.step = (1ull << 53) + 1; }, "step = 9007199254740993 exceeds 2^53"},
+  };
+  for (const auto& [plant, reason] : planted) {
+    SCOPED_TRACE(reason);
+    RunPipeline pipeline;
+    Settled got;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      RunFrame f = run_frame(k);
+      if (k == 2) plant(f.header);
+      collect(got, pipeline.push(std::move(f), t0));
+    }
+    EXPECT_EQ(got.order, iota(4));
+    ASSERT_EQ(got.rejected.size(), 1u);
+    EXPECT_EQ(got.rejected[0].index, 2u);
+    EXPECT_EQ(got.rejected[0].reason.rfind("run t frame 2: header rejected: " + reason, 0), 0u)
+        << got.rejected[0].reason;
+    ASSERT_EQ(got.accepted.size(), 3u);
+    EXPECT_EQ(got.accepted[2]->previous, 1u);
+    EXPECT_EQ(got.accepted[2]->distances.value, expected_distances(1, 3).value);
+    EXPECT_EQ(pipeline.counts().rejected, 1u);
+  }
+}
+
+TEST(RunPipeline, AFrameRefusedUnreadIsSettledInItsPlaceAfterItsPredecessors) {
+  RunPipeline pipeline;
+  Settled got;
+  collect(got, pipeline.push(run_frame(0), t0));
+  RunPipeline::Admission a = pipeline.admit(run_frame(1), t0);
+  ASSERT_TRUE(a.job);
+  RunPipeline::Admission r = pipeline.refuse(run_frame(2).header, "run t frame 2: too large", t0);
+  EXPECT_EQ(r.arrival, RunPipeline::Arrival::refused);
+  EXPECT_TRUE(r.distance_jobs.empty());  // frame 1 is still being analyzed
+  EXPECT_EQ(pipeline.pending(), 2u);
+  collect(got, pipeline.take_settled());
+  EXPECT_EQ(got.order, iota(1));
+  for (const DistanceJob& job : pipeline.analyzed(a.job->run())) pipeline.measured(job.run());
+  collect(got, pipeline.take_settled());
+  EXPECT_EQ(got.order, iota(3));
+  ASSERT_EQ(got.rejected.size(), 1u);
+  EXPECT_EQ(got.rejected[0].reason, "run t frame 2: too large");
+  // A refusal repeated is a duplicate.
+  EXPECT_EQ(pipeline.refuse(run_frame(2).header, "again", t0).arrival, RunPipeline::Arrival::duplicate);
+  // Frame 3 after a refused frame 2: measured from frame 1.
+  collect(got, pipeline.push(run_frame(3), t0));
+  ASSERT_EQ(got.accepted.size(), 3u);
+  EXPECT_EQ(got.accepted[2]->previous, 1u);
+}
+
+TEST(RunPipeline, AFrameRefusedAfterItsSuccessorWasAnalyzedReleasesTheSuccessorsDistances) {
+  RunPipeline pipeline;
+  Settled got;
+  collect(got, pipeline.push(run_frame(0), t0));
+  collect(got, pipeline.push(run_frame(2), t0));  // waits for frame 1
+  EXPECT_EQ(got.order, iota(1));
+  RunPipeline::Admission r = pipeline.refuse(run_frame(1).header, "run t frame 1: too large", t0);
+  ASSERT_EQ(r.distance_jobs.size(), 1u);
+  for (const DistanceJob& job : r.distance_jobs) pipeline.measured(job.run());
+  collect(got, pipeline.take_settled());
+  EXPECT_EQ(got.order, iota(3));
+  EXPECT_EQ(got.accepted[1]->previous, 0u);
+  EXPECT_EQ(got.accepted[1]->distances.value, expected_distances(0, 2).value);
+}
+
+TEST(RunPipeline, PendingBytesCountTheFramesHeldAndFallToZeroOnceSettled) {
+  RunPipeline pipeline;
+  const RunFrame f = run_frame(0);
+  const std::size_t one = frame_bytes(f.frame.particle_count, f.frame.contacts.size());
+  EXPECT_EQ(one, 5 * sizeof(Particle) + 5 * sizeof(Contact));
+  RunPipeline::Admission a0 = pipeline.admit(run_frame(0), t0);
+  RunPipeline::Admission a1 = pipeline.admit(invalid_frame(1), t0);
+  EXPECT_EQ(pipeline.pending_bytes(), 2 * one);
+  pipeline.analyzed(a1.job->run());  // rejected: its network is let go at once
+  EXPECT_EQ(pipeline.pending_bytes(), one);
+  pipeline.analyzed(a0.job->run());
+  EXPECT_EQ(pipeline.pending_bytes(), 0u);
+  EXPECT_EQ(pipeline.pending(), 0u);
+}
+
+// Every pair of 30 grains in contact: 29 contacts per grain; a packing reaches 5 (2D) or 12 (3D).
+TEST(RunPipeline, AFrameWithMoreContactsPerGrainThanTheBoundIsRejectedUnanalyzed) {
+  std::vector<Contact> clique;
+  for (std::int64_t i = 0; i < 30; ++i)
+    for (std::int64_t j = i + 1; j < 30; ++j) clique.push_back(both(i, j, 1.0 + 0.01 * static_cast<double>(i + j)));
+  for (const std::size_t bound : {std::size_t{24}, std::size_t{28}, std::size_t{29}, std::size_t{0}}) {
+    SCOPED_TRACE(bound);
+    RunPipeline pipeline(30s, EssentialConvention::floor, FrameRules{.max_contacts_per_grain = bound});
+    RunFrame f = run_frame(0);
+    f.frame = frame_of(30, clique, frame_label("t", 0));
+    Settled got;
+    collect(got, pipeline.push(std::move(f), t0));
+    if (bound == 0 || bound >= 29) {
+      EXPECT_EQ(got.accepted.size(), 1u);
+    } else {
+      ASSERT_EQ(got.rejected.size(), 1u);
+      EXPECT_EQ(got.rejected[0].reason.rfind("run t frame 0: 29 contacts per grain", 0), 0u) << got.rejected[0].reason;
+      EXPECT_NE(got.rejected[0].reason.find("exceed the bound of " + std::to_string(bound)), std::string::npos);
+    }
+  }
+  // The LAMMPS-like frames of this test pass the default bound.
+  RunPipeline pipeline(30s, EssentialConvention::floor, FrameRules{.max_contacts_per_grain = 24});
+  Settled got;
+  collect(got, pipeline.push(run_frame(0), t0));
+  EXPECT_EQ(got.accepted.size(), 1u);
 }
 
 }  // namespace

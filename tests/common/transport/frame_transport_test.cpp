@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/run/frame_bounds.hpp"
 #include "fnet.h"
 #include "tests/support/run_frame_compare.hpp"
 #include "tests/support/run_info_sample.hpp"
@@ -274,6 +275,44 @@ TEST(FrameTransport, MalformedSampleIsReportedAndLaterFramesStillArrive) {
       << got.malformed[1];
   EXPECT_NE(got.malformed[2].find("run broken frame 2: dimension 5 is neither 2 nor 3"), std::string::npos)
       << got.malformed[2];
+}
+
+}  // namespace
+}  // namespace fnet
+
+namespace fnet {
+namespace {
+
+// A frame above the subscriber's bound is refused unread, with a reason naming it and the bound;
+// a take holding a byte budget stops at the frame that reaches it.
+TEST(FrameTransport, AFrameAboveTheSizeBoundIsRefusedAndATakeStopsAtItsByteBudget) {
+  use_domain(212);
+  constexpr std::uint32_t kSmall = 10;
+  Publisher pub([&](dds::FramePublisher& p) {
+    p.publish(make_frame("sized", 0, 3000, 6000));
+    for (std::uint32_t k = 1; k <= kSmall; ++k) p.publish(make_frame("sized", k, 500, 900));
+  });
+  pub.wait_done();
+  const std::size_t big = frame_bytes(3000, 6000, 7), small = frame_bytes(500, 900, 7);
+  ASSERT_EQ(big, 3000 * 32 + 6000 * 32 + 7 * 24);
+  const std::size_t budget = 2 * small + 1;  // the third frame reaches it
+  dds::FrameSubscriber sub(Publisher::domain(), DDS_LENGTH_UNLIMITED, {big - 1, "the planted bound"});
+  std::vector<RunFrame> frames;
+  std::vector<dds::RefusedFrame> refused;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (frames.size() < kSmall && std::chrono::steady_clock::now() < deadline) {
+    dds::Received got = sub.take(DDS_MSECS(200), SIZE_MAX, budget);
+    EXPECT_LE(got.frames.size(), 3u);
+    for (auto& f : got.frames) frames.push_back(std::move(f));
+    for (auto& r : got.refused) refused.push_back(std::move(r));
+  }
+  EXPECT_EQ(pub.finish(), 0);
+  ASSERT_EQ(frames.size(), kSmall);
+  for (std::uint32_t k = 0; k < kSmall; ++k) expect_bit_exact(make_frame("sized", k + 1, 500, 900), frames[k]);
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused[0].header, make_frame("sized", 0, 3000, 6000).header);
+  EXPECT_EQ(refused[0].reason, "run sized frame 0: refused unread: its 3000 grains and 6000 contacts hold " +
+                                   mebibytes(big) + ", above the planted bound, " + mebibytes(big - 1));
 }
 
 }  // namespace
