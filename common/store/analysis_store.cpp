@@ -194,7 +194,7 @@ StoreWriter::StoreWriter(const std::filesystem::path& path, const std::string& r
     // holds all of them.
     std::optional<h5::File> old;
     if (previous->schema != kStoreSchemaV1) {
-      const h5::PropertyList old_fapl = h5::latest_format();
+      const h5::PropertyList old_fapl = h5::swmr_read_access();
       old.emplace(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, old_fapl.get()), "open " + path.string());
     }
     for (std::size_t k = 0; k < previous->frames.size(); ++k) {
@@ -338,7 +338,7 @@ std::array<std::size_t, kSeries> series_columns(hid_t root, const std::string& f
 StoredRun read_store(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
-  const h5::PropertyList fapl = h5::latest_format();
+  const h5::PropertyList fapl = h5::swmr_read_access();
   // SWMR read opens a store whose writer is still running, or was killed.
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
              "open " + file + " (not an HDF5 store?)");
@@ -356,9 +356,9 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {
     try {
-      out.info = run_info_from_json(nlohmann::json::parse(announcements.back()));
+      out.info = run_info_from_json(parse_bounded_json(announcements.back(), kAnnouncementJsonLimits, "JSON"));
       out.has_info = true;
-    } catch (const nlohmann::json::exception& e) {
+    } catch (const std::exception& e) {  // JsonInputError, or nlohmann's for a field missing or mistyped
       throw h5::Error(file + ": unreadable run announcement: " + e.what());
     }
   }
@@ -440,7 +440,7 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
     throw h5::Error(path.string() + ": run " + run.info.run_id + " has no committed frame " + std::to_string(index));
   const std::size_t row = static_cast<std::size_t>(it - run.frames.begin());
   if (!run.has_network[row]) return std::nullopt;
-  const h5::PropertyList fapl = h5::latest_format();
+  const h5::PropertyList fapl = h5::swmr_read_access();
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + path.string());
   return network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, index, it->diagrams.normal.vertices,
                     path.string());

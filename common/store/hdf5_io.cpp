@@ -53,6 +53,12 @@ PropertyList latest_format() {
   return fapl;
 }
 
+PropertyList swmr_read_access() {
+  PropertyList fapl = latest_format();
+  check(H5Pset_metadata_read_attempts(fapl.get(), kSwmrReadAttempts), "H5Pset_metadata_read_attempts");
+  return fapl;
+}
+
 void quiet() {
   static const bool once = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
   (void)once;
