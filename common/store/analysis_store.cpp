@@ -60,6 +60,13 @@ std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t 
   return out;
 }
 
+// "a,b,c": offsets as a message names them.
+std::string offsets_text(const std::uint64_t* offsets, std::size_t n) {
+  std::string out;
+  for (std::size_t k = 0; k < n; ++k) out += (k ? "," : "") + std::to_string(offsets[k]);
+  return out;
+}
+
 // The network of row `row` of an open store, whose frame is `index`; nullopt when not stored.
 // A fnet-store-2 store (`v2`) predates 3D frames: no dimension, no particle_z.
 std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std::string& run_id, std::uint32_t index,
@@ -76,6 +83,9 @@ std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std:
     h5::Dataset d(H5Dopen2(file, "dimension", H5P_DEFAULT), where + ": open dimension");
     h5::read_rows(d.get(), H5T_NATIVE_UINT8, &dimension, row, 1, 0, where + ": dimension");
   }
+  if (off[0] > off[1] || off[2] > off[3])
+    throw h5::Error(where + ": frame " + std::to_string(index) + ": network offsets " +
+                    offsets_text(off.data(), kNetworkOffsets) + " bound no rows");
   const std::size_t n = off[1] - off[0], m = off[3] - off[2], nz = v2 ? 0 : n;
   std::vector<double> particles(3 * n), z(nz), forces(2 * m);
   std::vector<std::uint32_t> pairs(2 * m);
@@ -399,11 +409,15 @@ StoredRun read_store(const std::filesystem::path& path) {
   if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint64_t* off = &offsets[k * kPointOffsets];
-    if (off[kPointOffsets - 1] > points.size() / 2) break;  // its points never reached the file
     const bool stored = !v1 && has_network[k] != 0;
-    if (stored && (network_offsets[k * kNetworkOffsets + 1] > particle_rows ||
-                   network_offsets[k * kNetworkOffsets + 3] > contact_rows))
-      break;  // its network never reached the file
+    const std::uint64_t* net = stored ? &network_offsets[k * kNetworkOffsets] : nullptr;
+    // Offsets that decrease are damage, not a writer stopped short: the store is refused.
+    if (!std::is_sorted(off, off + kPointOffsets) || (net && (net[0] > net[1] || net[2] > net[3])))
+      throw h5::Error(file + ": frame " + std::to_string(frame[k]) + ": offsets " + offsets_text(off, kPointOffsets) +
+                      (net ? ", network offsets " + offsets_text(net, kNetworkOffsets) : std::string()) +
+                      " bound no rows");
+    if (off[kPointOffsets - 1] > points.size() / 2) break;                // its points never reached the file
+    if (net && (net[1] > particle_rows || net[3] > contact_rows)) break;  // its network never reached the file
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
