@@ -2,7 +2,7 @@
 # README's test command (and CI's): installs what is missing, builds with warnings as errors, runs
 # the whole test suite; then builds again in Debug with AddressSanitizer and
 # UndefinedBehaviorSanitizer and runs the tests of the maths, the codecs, the stores and the API
-# there.
+# there; then fuzzes every decoder of outside input for a bounded time (tests/fuzz).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/setup.sh
@@ -21,4 +21,8 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-
   -DFNET_SANITIZE=ON -DFNET_WERROR=ON -DFNET_BUILD_TESTS=ON -DFNET_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON
 cmake --build build-sanitize -j"$jobs"
 ctest --test-dir build-sanitize --output-on-failure --timeout 900 -j"$jobs" \
-  -L '^(topology|distance|analysis|codec|store|e2e)$' -LE '^(slow|oracle|heavy)$'
+  -L '^(topology|distance|analysis|codec|store|e2e|fuzz)$' -LE '^(slow|oracle|heavy)$'
+
+# Every decoder of outside input under libFuzzer, 20 s each from its corpus (tests/fuzz/README.md):
+# a clang build of the fuzz targets alone, then a bounded run; any finding fails.
+FUZZ_SECONDS=20 bash tests/fuzz/run_fuzzers.sh

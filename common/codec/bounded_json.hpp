@@ -1,8 +1,7 @@
-// JSON text from outside the process, read with bounds checked while it is parsed: nesting deeper
-// than the bound stops the parser at the opening bracket that passes it (a deep document is never
-// built, so nothing recursive — copy, dump, destruction — can overflow the stack), and every
-// failure of the parser (syntax, a number outside a double's range, invalid UTF-8) becomes one
-// error type whose message names the byte and the cause in words, never nlohmann's exception text.
+// JSON text from outside the process (files, announcements, stores) read into a DOM within limits:
+// its size, and the depth of its nesting, checked while it is parsed (nlohmann's SAX interface),
+// so that no document, however nested, costs more stack than max_depth levels, and no parse error
+// of any kind (syntax, a number outside a double's range) escapes as anything but JsonInputError.
 #pragma once
 
 #include <cstddef>
@@ -14,24 +13,27 @@
 
 namespace fnet {
 
-class JsonTextError : public std::runtime_error {
+struct JsonLimits {
+  std::size_t max_bytes = std::size_t{1} << 20;
+  std::size_t max_depth = 64;  // arrays and objects open at once
+};
+
+// what() is "<source>: <reason>": "not JSON: parse error at line L, column C: ...", "number overflow
+// parsing '1e999' at byte B", or the limit exceeded.
+class JsonInputError : public std::runtime_error {
  public:
-  enum class Kind { syntax, number_range, too_deep };
-  JsonTextError(Kind kind, std::size_t byte, const std::string& message)
-      : std::runtime_error(message), kind_(kind), byte_(byte) {}
+  enum class Kind { not_json, too_large, too_deep };  // a number outside a double's range is not_json
+  JsonInputError(Kind kind, const std::string& source, const std::string& reason)
+      : std::runtime_error(source + ": " + reason), kind_(kind), reason_(reason) {}
   Kind kind() const { return kind_; }
-  std::size_t byte() const { return byte_; }  // 1-based position of the fault in the text
+  const std::string& reason() const { return reason_; }  // what() without the source
 
  private:
   Kind kind_;
-  std::size_t byte_;
+  std::string reason_;
 };
 
-// The nesting a document of fnet's may have: every document it reads is a few levels deep.
-inline constexpr std::size_t kMaxJsonDepth = 64;
-
-// Parses `text`; arrays and objects may nest `max_depth` deep (a scalar at top level is depth 0,
-// `[1]` depth 1). Throws JsonTextError.
-nlohmann::json parse_bounded_json(std::string_view text, std::size_t max_depth = kMaxJsonDepth);
+// The document `text` holds; `source` names it in every message (a file, "config_json").
+nlohmann::json parse_bounded_json(std::string_view text, const JsonLimits& limits, const std::string& source);
 
 }  // namespace fnet

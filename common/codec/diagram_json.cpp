@@ -233,9 +233,9 @@ Diagram document_diagram(const nlohmann::json& document, int dim) {
 
 namespace fnet {
 
-Diagram parse_document_diagram(std::string_view text, int dim) {
+Diagram parse_document_diagram(std::string_view text, int dim, const std::string& source) {
   if (std::optional<Diagram> plain = PlainDocument(text).diagram(diagram_key(dim))) return std::move(*plain);
-  return document_diagram(nlohmann::json::parse(text), dim);
+  return document_diagram(parse_bounded_json(text, kDiagramDocumentLimits, source), dim);
 }
 
 }  // namespace fnet

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/codec/bounded_json.hpp"
 #include "common/topology/diagram.hpp"
 #include "common/topology/persistence.hpp"
 
@@ -32,11 +33,16 @@ std::string diagram_key(int dim);
 // the document is not an object, lacks it, or holds no valid diagram under it.
 Diagram document_diagram(const nlohmann::json& document, int dim);
 
-// document_diagram of a document given as text. The shape writers produce (an object whose
-// values are plain: numbers, strings without escapes or non-ASCII bytes, literals, arrays and
-// objects of those) is read in one pass without a DOM; anything else, and every error, goes
-// through nlohmann::json::parse and document_diagram, so a bad document throws what they throw:
-// nlohmann::json::parse_error naming line and column, or std::invalid_argument naming the key.
-Diagram parse_document_diagram(std::string_view text, int dim);
+// Diagram documents may be large (one point takes some 40 bytes); they nest 3 deep, and what
+// writers add beside the diagrams little more.
+inline constexpr JsonLimits kDiagramDocumentLimits{std::size_t{1} << 30, 64};
+
+// document_diagram of a document given as text, `source` naming it in messages (a file). The shape
+// writers produce (an object whose values are plain: numbers, strings without escapes or non-ASCII
+// bytes, literals, arrays and objects of those) is read in one pass without a DOM; anything else,
+// and every error, goes through parse_bounded_json and document_diagram, so a bad document throws
+// what they throw: JsonInputError "SOURCE: not JSON: parse error at line L, column C: ...", or a
+// limit of kDiagramDocumentLimits exceeded, or std::invalid_argument naming the key.
+Diagram parse_document_diagram(std::string_view text, int dim, const std::string& source = "diagram document");
 
 }  // namespace fnet

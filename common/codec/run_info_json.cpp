@@ -12,9 +12,12 @@ nlohmann::json to_json(const RunInfo& info, JsonText text) {
           if (field.json_text) {
             if (text == JsonText::verbatim) {
               out[field.name] = value;
-            } else {  // text that does not parse is served as it is, a string
-              nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
-              out[field.key] = parsed.is_discarded() ? nlohmann::json(value) : std::move(parsed);
+            } else {  // text that does not parse, or nests deeper than any config, is served as it is, a string
+              try {
+                out[field.key] = parse_bounded_json(value, kAnnouncementJsonLimits, field.key);
+              } catch (const JsonInputError&) {
+                out[field.key] = value;
+              }
             }
             return;
           }

@@ -60,6 +60,13 @@ std::vector<StoreTime> optional_times(hid_t file, const char* name, std::size_t 
   return out;
 }
 
+// "a,b,c": offsets as a message names them.
+std::string offsets_text(const std::uint64_t* offsets, std::size_t n) {
+  std::string out;
+  for (std::size_t k = 0; k < n; ++k) out += (k ? "," : "") + std::to_string(offsets[k]);
+  return out;
+}
+
 // The network of row `row` of an open store, whose frame is `index`; nullopt when not stored.
 // A fnet-store-2 store (`v2`) predates 3D frames: no dimension, no particle_z.
 std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std::string& run_id, std::uint32_t index,
@@ -76,6 +83,9 @@ std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std:
     h5::Dataset d(H5Dopen2(file, "dimension", H5P_DEFAULT), where + ": open dimension");
     h5::read_rows(d.get(), H5T_NATIVE_UINT8, &dimension, row, 1, 0, where + ": dimension");
   }
+  if (off[0] > off[1] || off[2] > off[3])
+    throw h5::Error(where + ": frame " + std::to_string(index) + ": network offsets " +
+                    offsets_text(off.data(), kNetworkOffsets) + " bound no rows");
   const std::size_t n = off[1] - off[0], m = off[3] - off[2], nz = v2 ? 0 : n;
   std::vector<double> particles(3 * n), z(nz), forces(2 * m);
   std::vector<std::uint32_t> pairs(2 * m);
@@ -205,7 +215,7 @@ void StoreWriter::create(const std::filesystem::path& path, const std::filesyste
     // holds all of them.
     std::optional<h5::File> old;
     if (previous->schema != kStoreSchemaV1) {
-      const h5::PropertyList old_fapl = h5::latest_format();
+      const h5::PropertyList old_fapl = h5::swmr_read_access();
       old.emplace(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, old_fapl.get()), "open " + path.string());
     }
     for (std::size_t k = 0; k < previous->frames.size(); ++k) {
@@ -358,7 +368,7 @@ std::array<std::size_t, kSeries> series_columns(hid_t root, const std::string& f
 StoredRun read_store(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
-  const h5::PropertyList fapl = h5::latest_format();
+  const h5::PropertyList fapl = h5::swmr_read_access();
   // SWMR read opens a store whose writer is still running, or was killed.
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
              "open " + file + " (not an HDF5 store?)");
@@ -376,9 +386,9 @@ StoredRun read_store(const std::filesystem::path& path) {
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {
     try {
-      out.info = run_info_from_json(nlohmann::json::parse(announcements.back()));
+      out.info = run_info_from_json(parse_bounded_json(announcements.back(), kAnnouncementJsonLimits, "JSON"));
       out.has_info = true;
-    } catch (const nlohmann::json::exception& e) {
+    } catch (const std::exception& e) {  // JsonInputError, or nlohmann's for a field missing or mistyped
       throw h5::Error(file + ": unreadable run announcement: " + e.what());
     }
   }
@@ -419,11 +429,15 @@ StoredRun read_store(const std::filesystem::path& path) {
   if (!v1) n = std::min({n, has_network.size(), network_offsets.size() / kNetworkOffsets});
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint64_t* off = &offsets[k * kPointOffsets];
-    if (off[kPointOffsets - 1] > points.size() / 2) break;  // its points never reached the file
     const bool stored = !v1 && has_network[k] != 0;
-    if (stored && (network_offsets[k * kNetworkOffsets + 1] > particle_rows ||
-                   network_offsets[k * kNetworkOffsets + 3] > contact_rows))
-      break;  // its network never reached the file
+    const std::uint64_t* net = stored ? &network_offsets[k * kNetworkOffsets] : nullptr;
+    // Offsets that decrease are damage, not a writer stopped short: the store is refused.
+    if (!std::is_sorted(off, off + kPointOffsets) || (net && (net[0] > net[1] || net[2] > net[3])))
+      throw h5::Error(file + ": frame " + std::to_string(frame[k]) + ": offsets " + offsets_text(off, kPointOffsets) +
+                      (net ? ", network offsets " + offsets_text(net, kNetworkOffsets) : std::string()) +
+                      " bound no rows");
+    if (off[kPointOffsets - 1] > points.size() / 2) break;                // its points never reached the file
+    if (net && (net[1] > particle_rows || net[3] > contact_rows)) break;  // its network never reached the file
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
@@ -460,7 +474,7 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
     throw h5::Error(path.string() + ": run " + run.info.run_id + " has no committed frame " + std::to_string(index));
   const std::size_t row = static_cast<std::size_t>(it - run.frames.begin());
   if (!run.has_network[row]) return std::nullopt;
-  const h5::PropertyList fapl = h5::latest_format();
+  const h5::PropertyList fapl = h5::swmr_read_access();
   h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + path.string());
   return network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, index, it->diagrams.normal.vertices,
                     path.string());

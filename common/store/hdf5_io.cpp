@@ -72,6 +72,12 @@ PropertyList latest_format() {
   return fapl;
 }
 
+PropertyList swmr_read_access() {
+  PropertyList fapl = latest_format();
+  check(H5Pset_metadata_read_attempts(fapl.get(), kSwmrReadAttempts), "H5Pset_metadata_read_attempts");
+  return fapl;
+}
+
 void quiet() {
   // HDF5's error printing is set per thread: every thread that opens a store silences its own.
   thread_local const bool once = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();

@@ -15,6 +15,11 @@ void quiet();
 
 // File access with the latest format, which SWMR (single writer, readers while it writes) needs.
 PropertyList latest_format();
+// File access for a SWMR reader: the latest format, and a piece of metadata whose checksum fails
+// read at most kSwmrReadAttempts times. HDF5's default, 100 attempts each sleeping longer, meant
+// for a writer caught mid-flush, held the reader of a file damaged on disk for half an hour.
+inline constexpr unsigned kSwmrReadAttempts = 4;
+PropertyList swmr_read_access();
 
 void write_attribute(hid_t obj, const char* name, double v);
 void write_attribute(hid_t obj, const char* name, std::uint32_t v);

@@ -138,7 +138,7 @@ RunFileContents read_run_file(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw h5::Error(file + ": no such file");
-  const h5::PropertyList fapl = h5::latest_format();
+  const h5::PropertyList fapl = h5::swmr_read_access();
   // SWMR read opens a file whose writer is still running, or was killed; a file of the first
   // schema predates SWMR (its format cannot be opened so) and opens as a plain file.
   hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get());

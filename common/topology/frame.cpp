@@ -42,6 +42,20 @@ void validate(const Frame& frame) {
     }
     reject(frame, "particle count " + std::to_string(frame.particle_count) + " exceeds 2^32 - 1");
   }
+  if (const std::size_t declarable = kDeclaredParticlesPerContact * frame.contacts.size() + kDeclaredParticlesFloor;
+      frame.particles.empty() && frame.particle_count > declarable) {
+    const std::string bound = "more than " + std::to_string(declarable) + " particles (" +
+                              std::to_string(kDeclaredParticlesPerContact) + " per contact + " +
+                              std::to_string(kDeclaredParticlesFloor) +
+                              ") without a particle table, which must list the grains";
+    // Without a particle table the count is usually implied by the largest index: name its contact.
+    for (std::size_t k = 0; k < frame.contacts.size(); ++k) {
+      const Contact& c = frame.contacts[k];
+      if (std::max(c.i, c.j) >= static_cast<std::int64_t>(declarable))
+        reject(frame, describe(c, k) + ": particle index implies " + bound);
+    }
+    reject(frame, "particle count " + std::to_string(frame.particle_count) + ": " + bound);
+  }
   if (!frame.particles.empty() && frame.particles.size() != frame.particle_count)
     reject(frame, "particle table has " + std::to_string(frame.particles.size()) + " rows but the frame declares " +
                       std::to_string(frame.particle_count) + " particles");

@@ -36,9 +36,16 @@ class FrameError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Without a particle table, particle_count is only declared: the grains it counts beyond those in
+// contacts are rattlers, each a vertex of both networks and a point of PD0. So that a few bytes of
+// input cannot declare billions of them, such a frame declares at most this many particles per
+// contact, plus kDeclaredParticlesFloor; a larger one needs its particle table.
+inline constexpr std::size_t kDeclaredParticlesPerContact = 16;
+inline constexpr std::size_t kDeclaredParticlesFloor = 1024;
+
 // Checks everything the analysis relies on: dimension 2 or 3 (every z is 0 in 2D), finite values,
 // non-negative radii, indices in [0, particle_count), no self-contacts, no pair listed twice (in
-// either order).
+// either order), a declared particle count within the bound above.
 // A frame with no contacts is valid. Throws FrameError on the first problem found.
 void validate(const Frame& frame);
 

@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/codec/bounded_json.hpp"
+#include "common/codec/file_text.hpp"
+
 namespace fnet::sim {
 namespace {
 
@@ -15,6 +18,8 @@ template <class... F>
 struct Overload : F... {
   using F::operator()...;
 };
+template <class... F>
+Overload(F...) -> Overload<F...>;  // clang before 17 deduces no aggregate's arguments
 
 constexpr bool positive(double v) { return v > 0 && std::isfinite(v); }
 constexpr bool non_negative(double v) { return v >= 0 && std::isfinite(v); }
@@ -171,7 +176,7 @@ void apply_json(Params& p, const nlohmann::json& config) {
       return value.get<double>();
     };
     std::visit(Overload{[&](double Params::*m) { p.*m = number(); },
-                        [&](std::optional<double> Params::*m) {
+                        [&, &value = value](std::optional<double> Params::*m) {
                           if (value.is_null())
                             p.*m = std::nullopt;
                           else
@@ -188,6 +193,18 @@ void apply_json(Params& p, const nlohmann::json& config) {
                           p.*m = parse_integrator(value.get<std::string>());
                         }},
                field->member);
+  }
+}
+
+void apply_config_file(Params& p, const std::filesystem::path& file) {
+  const std::optional<FileText> text = FileText::read(file);
+  if (!text) throw std::invalid_argument(file.string() + ": cannot open config file");
+  try {
+    apply_json(p, parse_bounded_json(text->view(), JsonLimits{std::size_t{1} << 20, 16}, file.string()));
+  } catch (const JsonInputError& e) {
+    throw std::invalid_argument(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(file.string() + ": " + e.what());
   }
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
@@ -83,6 +84,10 @@ Integrator parse_integrator(const std::string& name);
 
 // Config file: a JSON object whose keys are the Params field names; unknown keys are errors.
 void apply_json(Params& p, const nlohmann::json& config);
+// The config file `file` (fnet-simd --config) applied to p: at most 1 MiB of JSON, nested at most
+// 16 deep, read by apply_json. Throws std::invalid_argument "FILE: what" (the file cannot be read,
+// is not JSON, or a key or value is wrong); the rules of the values are validate()'s.
+void apply_config_file(Params& p, const std::filesystem::path& file);
 nlohmann::json to_json(const Params& p);
 
 }  // namespace fnet::sim

@@ -27,9 +27,7 @@ Diagram read_diagram(const std::string& path, int dim) {
   const std::optional<FileText> text = FileText::read(path);
   if (!text) throw std::runtime_error("cannot open " + path);
   try {
-    return parse_document_diagram(text->view(), dim);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path + ": not JSON: " + e.what());
+    return parse_document_diagram(text->view(), dim, path);  // JsonInputError names the path
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(path + ": " + e.what());
   }

@@ -1,9 +1,6 @@
 #include "server/fnet-simd/simd_options.hpp"
 
-#include <fstream>
 #include <iostream>
-
-#include <nlohmann/json.hpp>
 
 #include "common/build_info/build_info.hpp"
 #include "common/run/run_names.hpp"
@@ -114,17 +111,7 @@ std::optional<SimdOptions> parse_simd_options(int argc, char** argv) {
 
   Params& p = params;
   p = defaults;
-  if (!config.empty()) {
-    std::ifstream in(config);
-    if (!in) throw std::invalid_argument(config + ": cannot open config file");
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(config + ": not JSON (" + e.what() + ")");
-    }
-    apply_json(p, j);
-  }
+  if (!config.empty()) apply_config_file(p, config);
   for (const ParamField& f : param_fields()) {
     const std::string flag = flag_name(f).substr(2);
     if (vm.count(flag)) set_from_text(p, f, vm[flag].as<std::string>());

@@ -89,17 +89,10 @@ class Batch {
 };
 
 // The error for a message the client sent that cannot be read as JSON within the limits.
-json unreadable(const JsonTextError& e, std::size_t max_depth) {
-  switch (e.kind()) {
-    case JsonTextError::Kind::too_deep:
-      return limit_error(nullptr, "max_json_depth", max_depth, std::string("the request is ") + e.what());
-    case JsonTextError::Kind::number_range:
-      return error_response(nullptr, kParseError, std::string("parse error: ") + e.what());
-    case JsonTextError::Kind::syntax:
-      break;
-  }
-  return error_response(nullptr, kParseError,
-                        "parse error: the request is not valid JSON (at byte " + std::to_string(e.byte()) + ")");
+json unreadable(const JsonInputError& e, std::size_t max_depth) {
+  if (e.kind() == JsonInputError::Kind::too_deep)
+    return limit_error(nullptr, "max_json_depth", max_depth, "the request is " + e.reason());
+  return error_response(nullptr, kParseError, "parse error: " + e.reason());
 }
 
 // "10", "0.5": seconds as a user wrote them.
@@ -186,8 +179,9 @@ bool Connection::run_message(std::string_view text) {
   json request;
   std::optional<json> parse_error;
   try {
-    request = parse_bounded_json(text, limits_.max_json_depth);
-  } catch (const JsonTextError& e) {
+    // The transports bound a message's bytes as they read it (max_line_bytes).
+    request = parse_bounded_json(text, JsonLimits{text.size(), limits_.max_json_depth}, "the request");
+  } catch (const JsonInputError& e) {
     parse_error = unreadable(e, limits_.max_json_depth);
   }
   if (!parse_error && request.is_object() && request.value("method", json()) == "auth") {

@@ -157,7 +157,8 @@ std::string lammps_config(const LammpsOptions& options, const RunDimension& dime
                           {"wall_types", options.wall_types},
                           {"dimension", dimension.value},
                           {"rho", options.rho.empty() ? std::string(density_region_name(region)) : options.rho}}}}
-      .dump();
+      // File names and flags are bytes, not always UTF-8: a byte that is not is written as U+FFFD.
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace fnet::sources

@@ -27,8 +27,8 @@ std::string error_of(Read read) {
     read();
   } catch (const std::invalid_argument& e) {
     return e.what();
-  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e400
-    return std::string("not JSON: ") + e.what();
+  } catch (const JsonInputError& e) {  // not JSON, a number outside a double's range, a limit
+    return e.what();
   }
   return "<accepted>";
 }
@@ -142,7 +142,7 @@ TEST(DiagramJson, TextReaderRefusesBrokenDocumentsNamingThePlace) {
   ASSERT_EQ(parse_document_diagram(good, 1).size(), 2u);
   for (std::size_t cut = 0; cut < good.size(); ++cut)  // truncated anywhere
     EXPECT_THAT(error_of([&] { parse_document_diagram(good.substr(0, cut), 1); }),
-                AllOf(HasSubstr("parse_error"), HasSubstr("line 1, column")))
+                AllOf(HasSubstr("not JSON: parse error"), HasSubstr("line 1, column")))
         << good.substr(0, cut);
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2.0,1.5],[3.0,1.]]})", 1); }), HasSubstr("column 26"));
   EXPECT_THAT(error_of([] { parse_document_diagram("{\"pd1\":[[2.0,1.5],\n[nan,1]]}", 1); }),
@@ -155,7 +155,7 @@ TEST(DiagramJson, TextReaderRefusesBrokenDocumentsNamingThePlace) {
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2,1]],"ok":tru})", 1); }), HasSubstr("column 24"));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"ok":t,"pd1":[[2,1]]})", 1); }), HasSubstr("column 8"));
   EXPECT_THAT(error_of([] { parse_document_diagram("{\"label\":\"gr\xff\",\"pd1\":[[2,1]]}", 1); }),
-              AllOf(HasSubstr("parse_error"), HasSubstr("UTF-8")));
+              AllOf(HasSubstr("not JSON: parse error"), HasSubstr("UTF-8")));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd0":[[2,1]]})", 1); }), HasSubstr("no \"pd1\""));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"([[2,1]])", 1); }), HasSubstr("no \"pd1\""));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2,1],[3]]})", 1); }),
@@ -165,6 +165,18 @@ TEST(DiagramJson, TextReaderRefusesBrokenDocumentsNamingThePlace) {
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":[[2,1],[1,3]]})", 1); }),
               AllOf(HasSubstr("pd1: point 1"), HasSubstr("birth 1 < death 3")));
   EXPECT_THAT(error_of([] { parse_document_diagram(R"({"pd1":{"a":1}})", 1); }), HasSubstr("pd1: a diagram must be"));
+}
+
+// Read through the DOM, a document nested 300 000 deep in a point, or beside the diagrams, is
+// refused while it is read: no reader or message recurses into it.
+TEST(DiagramJson, DeepNestingIsRefusedNotAStackOverflow) {
+  const std::string deep = std::string(300'000, '[') + std::string(300'000, ']');
+  EXPECT_THAT(error_of([&] { parse_document_diagram(R"({"pd1":[)" + deep + "]}", 1, "a.json"); }),
+              AllOf(HasSubstr("a.json: "), HasSubstr("nested deeper than 64")));
+  EXPECT_THAT(error_of([&] { parse_document_diagram(R"({"pd1":[[2,1]],"run":)" + deep + "}", 1, "a.json"); }),
+              HasSubstr("nested deeper than 64"));
+  EXPECT_THAT(error_of([&] { parse_document_diagram(R"({"pd1":[[1e999,1]]})", 1, "a.json"); }),
+              AllOf(HasSubstr("a.json: "), HasSubstr("1e999")));
 }
 
 }  // namespace

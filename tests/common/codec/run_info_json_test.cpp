@@ -45,6 +45,18 @@ TEST(RunInfoJson, ConfigThatIsNotJsonIsServedAsAString) {
   testing::expect_same_fields(sample, run_info_from_json(json));
 }
 
+// A config nested deeper than any run's (announced over DDS, up to 4 096 bytes) is served as its
+// text: no reader or writer of the answer recurses into it.
+TEST(RunInfoJson, ConfigNestedPastTheLimitIsServedAsAString) {
+  RunInfo sample = testing::distinct_run_info();
+  sample.config_json = std::string(2000, '[') + std::string(2000, ']');
+  EXPECT_EQ(to_json(sample).at("config"), sample.config_json);
+  sample.config_json = "{\"mu\": 1e999}";
+  EXPECT_EQ(to_json(sample).at("config"), sample.config_json);
+  sample.config_json = R"({"a": [[[1]]]})";
+  EXPECT_TRUE(to_json(sample).at("config").is_object());
+}
+
 TEST(RunInfoJson, AMissingFieldIsNamed) {
   nlohmann::json json = to_json(testing::distinct_run_info());
   json.erase("kt_over_kn");

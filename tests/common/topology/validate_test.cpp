@@ -158,6 +158,25 @@ TEST(Validate, HugeIndexWithoutParticleTableNamesTheContact) {
   EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: "), HasSubstr("contact 1"), HasSubstr("5000000000")));
 }
 
+// Without a particle table the grains beyond those in contacts cost a vertex each: a frame may
+// declare only so many of them, bounded by its contacts.
+TEST(Validate, DeclaredParticleCountWithoutParticleTableIsBoundedByTheContacts) {
+  Frame f = valid_frame();
+  f.particles.clear();
+  const std::size_t declarable = kDeclaredParticlesPerContact * f.contacts.size() + kDeclaredParticlesFloor;
+  f.particle_count = declarable;
+  EXPECT_NO_THROW(validate(f));
+  f.particle_count = declarable + 1;
+  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: particle count " + std::to_string(declarable + 1)),
+                                  HasSubstr("without a particle table")));
+  f.contacts[3].j = static_cast<std::int64_t>(declarable) + 5;  // as read from a contact list
+  f.particle_count = implied_particle_count(f.contacts);
+  EXPECT_THAT(rejection(f), AllOf(StartsWith("frame 12: contact 3 (i=0, j=" + std::to_string(declarable + 5)),
+                                  HasSubstr("implies more than " + std::to_string(declarable) + " particles")));
+  f.particles.assign(f.particle_count, Particle{0, 0, 0.5});  // a table that lists them is another matter
+  EXPECT_NO_THROW(validate(f));
+}
+
 TEST(Validate, RejectsSelfContact) {
   Frame f = valid_frame();
   f.contacts[1].j = 1;

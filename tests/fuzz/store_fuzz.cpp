@@ -1,0 +1,28 @@
+// An analysis store as fnet-server loads it at start and on server.rescan (read_store), and the
+// force networks network.get reads from it (read_network). Input: the HDF5 file.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+
+#include "common/store/analysis_store.hpp"
+#include "tests/fuzz/fuzz_input.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  namespace fuzz = fnet::fuzz;
+  const auto path = fuzz::write_file("store.h5", {reinterpret_cast<const char*>(data), size});
+  try {
+    const fnet::StoredRun run = fnet::read_store(path);
+    // The networks of the first frames: each is read by opening the store again.
+    for (std::size_t k = 0; k < std::min<std::size_t>(run.frames.size(), 3); ++k) {
+      try {
+        if (const auto network = fnet::read_network(path, run.frames[k].header.index)) fnet::validate(*network);
+      } catch (const fnet::FrameError& e) {
+        fuzz::require_names(e, {"frame "});
+      }
+    }
+  } catch (const fnet::h5::Error& e) {
+    fuzz::require_names(e, {path.string()});
+  }
+  return 0;
+}
