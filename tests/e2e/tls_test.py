@@ -132,8 +132,14 @@ def loopback_checks(source_dir, build_dir, work, domain):
         with socket.create_connection(("127.0.0.1", http), timeout=10) as s:
             s.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
             assert b"<html" not in s.recv(4096)
+        with socket.create_connection(("127.0.0.1", http), timeout=10) as s:
+            started = time.monotonic()
+            assert s.recv(1) == b"", "the dashboard kept a connection that never completed its handshake"
+            held = time.monotonic() - started
+            assert held < 3, held
         assert process.poll() is None
-        print("ok: the dashboard serves its page over https and the API over wss, nothing over plain HTTP")
+        print("ok: the dashboard serves its page over https and the API over wss, nothing over plain HTTP; a silent "
+              f"connection is closed at its handshake's deadline ({held:.1f} s)")
     finally:
         stop(process)
 
