@@ -8,7 +8,9 @@ packages=(
   build-essential cmake pkg-config git ca-certificates
   # libraries of the design
   libeigen3-dev libhdf5-dev libboost-dev libboost-program-options-dev zlib1g-dev
-  nlohmann-json3-dev cyclonedds-dev cyclonedds-tools
+  nlohmann-json3-dev cyclonedds-dev cyclonedds-tools libssl-dev
+  # TLS test certificates are made by the tests
+  openssl
   # tests
   libgtest-dev libgmock-dev googletest clang-format
   # the fuzz targets (tests/fuzz): clang with libFuzzer and the sanitizers' runtimes, llvm-symbolizer

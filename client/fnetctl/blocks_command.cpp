@@ -36,7 +36,7 @@ int blocks_command(const Endpoint& at, const std::vector<std::string>& args) {
   p["frame"] = frame_option("--frame", frame);
   p["other_frame"] = frame_option("--other-frame", other);
   p["k"] = k;
-  RpcClient rpc(at.host, at.port, std::chrono::seconds(30), at.token);
+  RpcClient rpc(at.host, at.port, std::chrono::seconds(30), at.token, at.tls);
   const json r = rpc.call("blocks.get", p);
   if (format == "json")
     std::cout << r.dump() << "\n";

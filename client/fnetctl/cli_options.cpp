@@ -66,6 +66,11 @@ Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, con
       at.port = parse_port(*port, "--port");
     } else if (const auto file = value_of("--token-file")) {
       at.token = read_token(*file);
+    } else if (args[k] == "--tls") {
+      at.tls.enabled = true;
+    } else if (const auto ca = value_of("--tls-ca")) {
+      if (ca->empty()) throw po::error("--tls-ca needs a file of PEM certificates");
+      at.tls = {true, *ca};
     } else {
       rest.push_back(args[k]);
     }

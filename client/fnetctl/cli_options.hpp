@@ -11,6 +11,7 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include "client/rpc/rpc_client.hpp"
 #include "common/analysis/metric_vocabulary.hpp"
 #include "common/distance/essential_convention.hpp"
 #include "common/topology/force_network.hpp"
@@ -24,10 +25,11 @@ struct Endpoint {
   std::string host = "127.0.0.1";
   unsigned short port = 7707;
   std::string token;  // presented first when not empty (a server given --token-file asks for it)
+  TlsOptions tls;     // --tls, --tls-ca FILE (which implies --tls)
 };
 
 // The server's address and token: FNET_HOST / FNET_PORT / FNET_TOKEN from the environment,
-// overridden by --host, --port and --token-file (also --host=H, ...) wherever they stand on the
+// overridden by --host, --port, --token-file, --tls and --tls-ca (also --host=H, ...) wherever they stand on the
 // command line; those are removed from `args`. Throws boost::program_options::error naming the
 // flag or variable (a token file that cannot be read, too).
 Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, const char* env_port,

@@ -58,7 +58,9 @@ constexpr const char* kUsageText =
     "\n"
     "global options, before or after the command: --host H (default $FNET_HOST, else 127.0.0.1),\n"
     "  --port P (default $FNET_PORT, else 7707), --token-file F (the token a server given --token-file\n"
-    "  asks for; default $FNET_TOKEN, the token itself); --version prints fnetctl's version and commit\n"
+    "  asks for; default $FNET_TOKEN, the token itself), --tls (a server given --tls-cert; its certificate\n"
+    "  verified against the system's authorities) or --tls-ca F (against the PEM certificates in F);\n"
+    "  --version prints fnetctl's version and commit\n"
     "exit codes: 0 ok, 1 a failure of fnetctl itself (an answer it cannot read, output it cannot\n"
     "            write), 2 bad usage or parameter, 3 server unreachable, 4 unknown run, frame or\n"
     "            ensemble, 5 other server error\n"
@@ -69,7 +71,8 @@ class Connection {
  public:
   explicit Connection(Endpoint at) : at_(std::move(at)) {}
   RpcClient& operator()() {
-    if (!client_) client_ = std::make_unique<RpcClient>(at_.host, at_.port, std::chrono::seconds(30), at_.token);
+    if (!client_)
+      client_ = std::make_unique<RpcClient>(at_.host, at_.port, std::chrono::seconds(30), at_.token, at_.tls);
     return *client_;
   }
 

@@ -169,7 +169,7 @@ int watch_command(const Endpoint& at, const std::vector<std::string>& args) {
   int failures = 0;
   while (!interrupted) {
     try {
-      RpcClient rpc(at.host, at.port, 10s, at.token);
+      RpcClient rpc(at.host, at.port, 10s, at.token, at.tls);
       json summary;
       while (!interrupted) {  // the run may not exist yet: fnet-simd may still be relaxing
         try {

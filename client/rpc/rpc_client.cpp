@@ -7,7 +7,7 @@ namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
 RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout,
-                     const std::string& token)
+                     const std::string& token, const TlsOptions& tls)
     : socket_(io_), timeout_(timeout) {
   boost::system::error_code ec;
   tcp::resolver resolver(io_);
@@ -17,24 +17,55 @@ RpcClient::RpcClient(const std::string& host, unsigned short port, std::chrono::
   if (ec)
     throw ConnectionError("cannot connect to fnet-server at " + host + ":" + std::to_string(port) + ": " +
                           ec.message());
+  if (tls.enabled) start_tls(host, tls);
   if (!token.empty()) call("auth", {{"token", token}});
 }
 
-std::optional<json> RpcClient::read_message(std::chrono::milliseconds timeout) {
+void RpcClient::start_tls(const std::string& host, const TlsOptions& tls) {
+  namespace ssl = asio::ssl;
+  tls_context_ = std::make_unique<ssl::context>(ssl::context::tls_client);
+  tls_context_->set_options(ssl::context::no_sslv2 | ssl::context::no_sslv3 | ssl::context::no_tlsv1 |
+                            ssl::context::no_tlsv1_1);
+  boost::system::error_code ec;
+  if (tls.ca_file.empty())
+    tls_context_->set_default_verify_paths(ec);
+  else
+    tls_context_->load_verify_file(tls.ca_file, ec);
+  if (ec) throw ConnectionError("cannot use '" + tls.ca_file + "' as PEM certificates to trust: " + ec.message());
+  tls_ = std::make_unique<ssl::stream<tcp::socket&>>(socket_, *tls_context_);
+  tls_->set_verify_mode(ssl::verify_peer);
+  tls_->set_verify_callback(ssl::host_name_verification(host));
+  SSL_set_tlsext_host_name(tls_->native_handle(), host.c_str());  // SNI
   boost::system::error_code result = asio::error::would_block;
-  std::size_t n = 0;
-  asio::async_read_until(socket_, input_, '\n', [&](boost::system::error_code ec, std::size_t got) {
-    result = ec;
-    n = got;
-  });
+  tls_->async_handshake(ssl::stream_base::client, [&](boost::system::error_code got) { result = got; });
+  run_until_done(result, timeout_);
+  if (result == asio::error::operation_aborted) throw ConnectionError("the TLS handshake with " + host + " timed out");
+  if (result) throw ConnectionError("TLS handshake with " + host + " failed: " + result.message());
+}
+
+void RpcClient::run_until_done(const boost::system::error_code& result, std::chrono::milliseconds timeout) {
   io_.restart();
   io_.run_for(timeout);
   if (result == asio::error::would_block) {  // timed out: cancel and let the handler run
     socket_.cancel();
     io_.restart();
     io_.run();
-    if (result == asio::error::operation_aborted) return std::nullopt;
   }
+}
+
+std::optional<json> RpcClient::read_message(std::chrono::milliseconds timeout) {
+  boost::system::error_code result = asio::error::would_block;
+  std::size_t n = 0;
+  const auto done = [&](boost::system::error_code ec, std::size_t got) {
+    result = ec;
+    n = got;
+  };
+  if (tls_)
+    asio::async_read_until(*tls_, input_, '\n', done);
+  else
+    asio::async_read_until(socket_, input_, '\n', done);
+  run_until_done(result, timeout);
+  if (result == asio::error::operation_aborted) return std::nullopt;
   if (result) throw ConnectionError("connection to fnet-server lost: " + result.message());
   std::string line(n, '\0');
   std::istream(&input_).read(line.data(), static_cast<std::streamsize>(n));
@@ -50,7 +81,10 @@ json RpcClient::call(const std::string& method, const json& params) {
   const std::string request =
       json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}}.dump() + "\n";
   boost::system::error_code ec;
-  asio::write(socket_, asio::buffer(request), ec);
+  if (tls_)
+    asio::write(*tls_, asio::buffer(request), ec);
+  else
+    asio::write(socket_, asio::buffer(request), ec);
   if (ec) throw ConnectionError("cannot send to fnet-server: " + ec.message());
   const auto deadline = std::chrono::steady_clock::now() + timeout_;
   while (true) {

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>  // Boost 1.74's asio needs it first under C++20
 
 #include <boost/asio.hpp>
+#include <boost/asio/ssl.hpp>
 #include <nlohmann/json.hpp>
 
 namespace fnet::client {
@@ -34,12 +36,20 @@ class CallError : public std::runtime_error {
   json data_;
 };
 
+// TLS to a server given --tls-cert: its certificate must verify against `ca_file` (PEM), or the
+// system's trusted authorities when it is empty, and name the host connected to.
+struct TlsOptions {
+  bool enabled = false;
+  std::string ca_file;
+};
+
 class RpcClient {
  public:
   // With a `token`, the connection presents it first (the auth request of proto/api.md, "Access"):
-  // a server that asks for one runs no method before it; a wrong one is a CallError (-32007).
+  // a server that asks for one runs no method before it; a wrong one is a CallError (-32007). A
+  // failed TLS handshake (a certificate that does not verify, say) is a ConnectionError.
   RpcClient(const std::string& host, unsigned short port, std::chrono::milliseconds timeout = std::chrono::seconds(30),
-            const std::string& token = "");
+            const std::string& token = "", const TlsOptions& tls = {});
 
   // Sends a request and returns its result; notifications that arrive first are kept for next_notification().
   json call(const std::string& method, const json& params = json::object());
@@ -48,9 +58,14 @@ class RpcClient {
 
  private:
   std::optional<json> read_message(std::chrono::milliseconds timeout);
+  void start_tls(const std::string& host, const TlsOptions& tls);
+  // Runs the io_context until `result` is set or `timeout` passes (then cancels: operation_aborted).
+  void run_until_done(const boost::system::error_code& result, std::chrono::milliseconds timeout);
 
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
+  std::unique_ptr<boost::asio::ssl::context> tls_context_;
+  std::unique_ptr<boost::asio::ssl::stream<boost::asio::ip::tcp::socket&>> tls_;  // over socket_, when TLS
   boost::asio::streambuf input_;
   std::chrono::milliseconds timeout_;
   std::int64_t next_id_ = 1;

@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <future>
 #include <iostream>
 #include <mutex>
@@ -17,6 +18,7 @@
 
 #include "server/api/api_methods.hpp"
 #include "server/fnet-server/server_options.hpp"
+#include "server/fnet-server/token_file.hpp"
 #include "server/registry/ingest.hpp"
 #include "server/registry/run_registry.hpp"
 #include "server/rpc/rpc_server.hpp"
@@ -36,9 +38,9 @@ RegistryLimits registry_limits(const ServerOptions& o) {
 }
 
 // The address a browser opens: an IPv6 address in brackets.
-std::string dashboard_address(const std::string& bind, unsigned short port) {
+std::string dashboard_address(const std::string& bind, unsigned short port, bool tls) {
   const std::string host = bind.find(':') == std::string::npos ? bind : "[" + bind + "]";
-  return "http://" + host + ":" + std::to_string(port) + "/";
+  return (tls ? "https://" : "http://") + host + ":" + std::to_string(port) + "/";
 }
 
 // Reopens the stores under --data-dir; a store that cannot be loaded is reported and left out.
@@ -132,10 +134,17 @@ void serve_until_signalled(boost::asio::io_context& io, fnet::rpc::Server& serve
 int main(int argc, char** argv) {
   const auto parsed = parse_server_options(argc, argv);
   if (const int* exit_code = std::get_if<int>(&parsed)) return *exit_code;
-  const ServerOptions& o = std::get<ServerOptions>(parsed);
+  ServerOptions o = std::get<ServerOptions>(parsed);
   // Beyond a file-size limit a write fails (a store fault, retried) instead of killing the server.
   std::signal(SIGXFSZ, SIG_IGN);
   try {
+    if (o.token.empty() && !o.token_file.empty()) {  // beyond loopback, given none: made (or kept) in DATA_DIR
+      std::filesystem::create_directories(o.data_dir);
+      o.token = ensure_token_file(o.token_file);
+      std::cout << "fnet-server token in " << o.token_file << " (mode 0600; clients: --token-file or FNET_TOKEN)"
+                << std::endl;
+    }
+    const fnet::rpc::TlsContext tls = o.tls_cert.empty() ? nullptr : fnet::rpc::make_server_tls(o.tls_cert, o.tls_key);
     boost::asio::thread_pool pool(o.threads);
     // The runs' analysis and the API's heavy queries share the pool, served in turn.
     FairScheduler scheduler(pool, o.threads);
@@ -147,19 +156,20 @@ int main(int argc, char** argv) {
     context.offload = [&scheduler](std::function<void()> work) { scheduler.post(kApiQueue, std::move(work)); };
     const fnet::rpc::Handler api = make_api(context);
     const fnet::rpc::Access access{o.token};
-    fnet::rpc::Server server(io, o.bind, o.port, api, o.limits, access);
+    fnet::rpc::Server server(io, o.bind, o.port, api, o.limits, access, tls);
     std::optional<fnet::web::HttpServer> dashboard;
-    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, o.limits, access);
+    if (o.http_port) dashboard.emplace(io, o.bind, *o.http_port, api, o.limits, access, tls);
     context.connections = [&server, &dashboard] {
       return server.connections() + (dashboard ? dashboard->connections() : 0);
     };
     Ingest ingest(registry, {static_cast<dds_domainid_t>(o.domain), o.max_in_flight, o.max_in_flight_mib << 20,
                              o.max_frame_mib << 20});
     context.ingest_state = [&ingest] { return ingest.state(); };
-    std::cout << "fnet-server listening on " << o.bind << ":" << server.port() << " data-dir " << o.data_dir
-              << std::endl;
+    std::cout << "fnet-server listening on " << o.bind << ":" << server.port() << (tls ? " (TLS)" : "") << " data-dir "
+              << o.data_dir << std::endl;
     if (dashboard)
-      std::cout << "fnet-server dashboard on " << dashboard_address(o.bind, dashboard->port()) << std::endl;
+      std::cout << "fnet-server dashboard on " << dashboard_address(o.bind, dashboard->port(), tls != nullptr)
+                << std::endl;
     std::optional<StoreTending> tending(std::in_place, registry, ingest, server_name(o.data_dir));
     serve_until_signalled(io, server, dashboard);
     ingest.stop();

@@ -1,6 +1,7 @@
 #include "server/fnet-server/server_options.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -72,7 +73,10 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "free port, printed at start; default: no dashboard)")(
       "token-file", po::value<std::string>(),
       "a file holding the token every connection to the API and the dashboard must present (one line, 16 or more "
-      "of A-Z a-z 0-9 . _ ~ -); required to --bind any address but loopback")(
+      "of A-Z a-z 0-9 . _ ~ -); beyond loopback without it, DATA_DIR/token is made (mode 0600) and used")(
+      "tls-cert", po::value(&o.tls_cert),
+      "PEM certificate chain: the API and the dashboard speak TLS (required to --bind any address but loopback)")(
+      "tls-key", po::value(&o.tls_key), "PEM private key of --tls-cert")(
       "threads", po::value(&o.threads)->default_value(o.threads), "analysis threads")(
       "domain", po::value(&o.domain)->default_value(o.domain), "DDS domain id")(
       "max-in-flight", po::value(&o.max_in_flight)->default_value(o.max_in_flight),
@@ -114,8 +118,9 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
     po::notify(vm);
     if (vm.count("http-port")) o.http_port = vm["http-port"].as<unsigned short>();
     if (vm.count("token-file")) {
+      o.token_file = vm["token-file"].as<std::string>();
       try {
-        o.token = fnet::rpc::read_token_file(vm["token-file"].as<std::string>());
+        o.token = fnet::rpc::read_token_file(o.token_file);
       } catch (const std::runtime_error& e) {
         throw po::error(std::string("--token-file: ") + e.what());
       }
@@ -133,11 +138,15 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
     boost::system::error_code bad_address;
     boost::asio::ip::make_address(o.bind, bad_address);
     if (bad_address) throw po::error("--bind '" + o.bind + "' is not an IP address");
-    // Never an open API or dashboard on a network: beyond loopback, only holders of the token.
-    if (!fnet::rpc::is_loopback(o.bind) && o.token.empty())
+    if (o.tls_cert.empty() != o.tls_key.empty()) throw po::error("--tls-cert and --tls-key go together");
+    // Never an open API or dashboard on a network: beyond loopback, only holders of the token, and
+    // only over TLS, so that neither the token nor the results travel in clear.
+    if (!fnet::rpc::is_loopback(o.bind) && o.tls_cert.empty())
       throw po::error("--bind " + o.bind +
-                      " is not a loopback address: give --token-file FILE, so that only those who hold the token "
-                      "may use the API and the dashboard");
+                      " is not a loopback address: give --tls-cert FILE --tls-key FILE, so that the API and the "
+                      "dashboard speak TLS");
+    if (!fnet::rpc::is_loopback(o.bind) && o.token_file.empty())
+      o.token_file = (std::filesystem::path(o.data_dir) / "token").string();
   } catch (const po::error& e) {
     std::cerr << "fnet-server: " << e.what() << " (see --help)\n";
     return 2;

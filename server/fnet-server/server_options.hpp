@@ -15,6 +15,8 @@ struct ServerOptions {
   unsigned short port = 7707;
   std::optional<unsigned short> http_port;  // the dashboard's; none: not served
   std::string token;                        // asked of every connection (--token-file); empty: none
+  std::string token_file;                   // where the token is; beyond loopback without one: DATA_DIR/token
+  std::string tls_cert, tls_key;            // PEM files; both empty: no TLS
   unsigned threads = 1;                     // analysis threads, >= 1; the default is the hardware's
   int domain = 0;                           // DDS domain id
   std::size_t max_in_flight = 64, max_subscriptions = 16;

@@ -4,17 +4,41 @@
 #include <istream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace fnet::rpc {
 namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
-TcpPeer::TcpPeer(tcp::socket socket, Strand strand, const ServerLimits& limits, const Handler& handler,
-                 const Access& access, std::function<void()> on_end)
+template <class Stream>
+LinePeer<Stream>::LinePeer(Stream stream, Strand strand, const ServerLimits& limits, const Handler& handler,
+                           const Access& access, std::function<void()> on_end)
     : Connection(std::move(strand), "\n", limits, handler, access, false, std::move(on_end)),
-      socket_(std::move(socket)),
+      stream_(std::move(stream)),
       input_(limits.max_line_bytes + 1) {}
+
+template <class Stream>
+void LinePeer<Stream>::handshake_then_start() {
+  if constexpr (std::is_same_v<Stream, TlsStream>) {
+    auto deadline = std::make_shared<asio::steady_timer>(
+        socket().get_executor(),
+        std::chrono::duration_cast<asio::steady_timer::duration>(limits_.first_request_timeout));
+    asio::post(strand_, [self = self(), deadline] {
+      deadline->async_wait(asio::bind_executor(self->strand_, [self](boost::system::error_code ec) {
+        if (!ec) self->close_transport();  // the handshake then fails, and the peer ends
+      }));
+      self->stream_.async_handshake(asio::ssl::stream_base::server,
+                                    asio::bind_executor(self->strand_, [self, deadline](boost::system::error_code ec) {
+                                      deadline->cancel();
+                                      if (ec) return self->close_transport();
+                                      self->start();
+                                    }));
+    });
+  } else {
+    start();
+  }
+}
 
 namespace {
 
@@ -42,8 +66,9 @@ std::string http_refusal() {
 
 }  // namespace
 
-void TcpPeer::read_next() {
-  asio::async_read_until(socket_, input_, '\n',
+template <class Stream>
+void LinePeer<Stream>::read_next() {
+  asio::async_read_until(stream_, input_, '\n',
                          asio::bind_executor(strand_, [self = self()](boost::system::error_code ec, std::size_t n) {
                            if (ec == asio::error::not_found)  // the line outgrew the buffer's limit
                              return self->refuse(error_response(nullptr, kInvalidRequest,
@@ -61,25 +86,37 @@ void TcpPeer::read_next() {
                          }));
 }
 
-void TcpPeer::write(const std::string& text) {
+template <class Stream>
+void LinePeer<Stream>::write(const std::string& text) {
   asio::async_write(
-      socket_, asio::buffer(text),
+      stream_, asio::buffer(text),
       asio::bind_executor(strand_, [self = self()](boost::system::error_code ec, std::size_t) { self->written(ec); }));
 }
 
-// After the last reply: half-close, then discard what the client is still sending (for at most
-// a few seconds) so that closing does not reset the connection and destroy the reply in flight.
-void TcpPeer::finish() {
-  boost::system::error_code ignored;
-  socket_.shutdown(tcp::socket::shutdown_send, ignored);
-  auto timer = std::make_shared<asio::steady_timer>(socket_.get_executor(), std::chrono::seconds(3));
+// After the last reply: half-close (with TLS, its close_notify first), then discard what the
+// client is still sending (for at most a few seconds) so that closing does not reset the
+// connection and destroy the reply in flight.
+template <class Stream>
+void LinePeer<Stream>::finish() {
+  auto timer = std::make_shared<asio::steady_timer>(socket().get_executor(), std::chrono::seconds(3));
   timer->async_wait(asio::bind_executor(strand_, [self = self(), timer](boost::system::error_code) { self->close(); }));
-  drain(timer);
+  if constexpr (std::is_same_v<Stream, TlsStream>) {
+    stream_.async_shutdown(asio::bind_executor(strand_, [self = self(), timer](boost::system::error_code) {
+      boost::system::error_code ignored;
+      self->socket().shutdown(tcp::socket::shutdown_send, ignored);
+      self->drain(timer);
+    }));
+  } else {
+    boost::system::error_code ignored;
+    socket().shutdown(tcp::socket::shutdown_send, ignored);
+    drain(timer);
+  }
 }
 
-void TcpPeer::drain(const std::shared_ptr<asio::steady_timer>& timer) {
+template <class Stream>
+void LinePeer<Stream>::drain(const std::shared_ptr<asio::steady_timer>& timer) {
   auto buffer = std::make_shared<std::array<char, 65536>>();
-  socket_.async_read_some(
+  socket().async_read_some(
       asio::buffer(*buffer),
       asio::bind_executor(strand_, [self = self(), buffer, timer](boost::system::error_code ec, std::size_t) {
         if (ec) {
@@ -90,11 +127,15 @@ void TcpPeer::drain(const std::shared_ptr<asio::steady_timer>& timer) {
       }));
 }
 
-void TcpPeer::close_transport() {
+template <class Stream>
+void LinePeer<Stream>::close_transport() {
   boost::system::error_code ignored;
-  socket_.shutdown(tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  socket().shutdown(tcp::socket::shutdown_both, ignored);
+  socket().close(ignored);
 }
+
+template class LinePeer<tcp::socket>;
+template class LinePeer<TlsStream>;
 
 namespace {
 
@@ -106,15 +147,22 @@ std::string busy_line(std::size_t max_connections) {
 }  // namespace
 
 Server::Server(asio::io_context& io, const std::string& address, unsigned short port, Handler handler,
-               ServerLimits limits, Access access)
+               ServerLimits limits, Access access, TlsContext tls)
     : handler_(std::move(handler)),
       limits_(limits),
       access_(std::move(access)),
-      listener_(io, address, port, limits_.max_connections, busy_line(limits_.max_connections),
+      tls_(std::move(tls)),
+      // A TLS client could not read a plain line: beyond the bound it is only closed.
+      listener_(io, address, port, limits_.max_connections, tls_ ? "" : busy_line(limits_.max_connections),
                 [this](tcp::socket socket, Strand strand, std::shared_ptr<void> slot) {
-                  std::make_shared<TcpPeer>(std::move(socket), std::move(strand), limits_, handler_, access_,
-                                            [slot = std::move(slot)] {})
-                      ->start();
+                  if (tls_)
+                    std::make_shared<TlsPeer>(TlsStream(std::move(socket), *tls_), std::move(strand), limits_, handler_,
+                                              access_, [slot = std::move(slot)] {})
+                        ->handshake_then_start();
+                  else
+                    std::make_shared<TcpPeer>(std::move(socket), std::move(strand), limits_, handler_, access_,
+                                              [slot = std::move(slot)] {})
+                        ->start();
                 }) {}
 
 }  // namespace fnet::rpc

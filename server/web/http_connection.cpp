@@ -4,6 +4,7 @@
 #include <chrono>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include <boost/beast/websocket.hpp>
 
@@ -63,10 +64,11 @@ Response answer(const Request& request) {
   return response(http::status::ok, request.version(), asset->content_type, std::string(asset->body));
 }
 
-HttpConnection::HttpConnection(asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-                               const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
-                               std::shared_ptr<void> slot)
-    : stream_(std::move(socket)),
+template <class Stream>
+HttpConnection<Stream>::HttpConnection(Stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
+                                       const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
+                                       std::shared_ptr<void> slot)
+    : stream_(std::move(stream)),
       strand_(std::move(strand)),
       limits_(limits),
       handler_(handler),
@@ -74,20 +76,34 @@ HttpConnection::HttpConnection(asio::ip::tcp::socket socket, rpc::Strand strand,
       port_(port),
       slot_(std::move(slot)) {}
 
-void HttpConnection::start() {
-  asio::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read_request(); });
+template <class Stream>
+void HttpConnection<Stream>::start() {
+  asio::dispatch(stream_.get_executor(), [self = this->shared_from_this()] {
+    if constexpr (std::is_same_v<Stream, TlsStream>) {
+      self->tcp().expires_after(
+          std::chrono::duration_cast<std::chrono::steady_clock::duration>(self->limits_.first_request_timeout));
+      self->stream_.async_handshake(asio::ssl::stream_base::server, [self](beast::error_code ec) {
+        if (ec) return self->tcp().close();
+        self->read_request();
+      });
+    } else {
+      self->read_request();
+    }
+  });
 }
 
-void HttpConnection::read_request() {
+template <class Stream>
+void HttpConnection<Stream>::read_request() {
   parser_ = std::make_unique<http::request_parser<http::string_body>>();
   parser_->header_limit(kMaxHeaderBytes);
   parser_->body_limit(kMaxBodyBytes);
-  stream_.expires_after(kRequestTimeout);  // a client that sends nothing is not held
+  tcp().expires_after(kRequestTimeout);  // a client that sends nothing is not held
   http::async_read(stream_, buffer_, *parser_,
-                   [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
+                   [self = this->shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
 }
 
-void HttpConnection::on_request(beast::error_code ec) {
+template <class Stream>
+void HttpConnection<Stream>::on_request(beast::error_code ec) {
   if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::operation_aborted)
     return close();
   if (ec == http::error::header_limit || ec == http::error::body_limit) {
@@ -114,43 +130,58 @@ void HttpConnection::on_request(beast::error_code ec) {
   if (admission.verdict == Admission::Verdict::redirect) {
     Response r = error(http::status::see_other, request.version(), "see " + admission.location);
     r.set(http::field::location, admission.location);
-    r.set(http::field::set_cookie, admission.set_cookie);
+    // Over TLS the browser is told never to send the token in clear.
+    r.set(http::field::set_cookie,
+          admission.set_cookie + (std::is_same_v<Stream, TlsStream> ? std::string("; Secure") : std::string()));
     return reply(std::move(r));
   }
   if (beast::websocket::is_upgrade(request) && path_of(request.target()) == kRpcPath) {
-    stream_.expires_never();
-    const auto ws =
-        std::make_shared<WebSocketPeer>(std::move(stream_), strand_, limits_, handler_, access_, [slot = slot_] {});
+    tcp().expires_never();
+    const auto ws = std::make_shared<WebSocketPeer<Stream>>(std::move(stream_), strand_, limits_, handler_, access_,
+                                                            [slot = slot_] {});
     ws->accept(std::move(request));
     return;
   }
   reply(answer(request));
 }
 
-void HttpConnection::send(Response response) {
+template <class Stream>
+void HttpConnection<Stream>::send(Response response) {
   auto held = std::make_shared<Response>(std::move(response));
-  http::async_write(stream_, *held, [self = shared_from_this(), held](beast::error_code ec, std::size_t) {
+  http::async_write(stream_, *held, [self = this->shared_from_this(), held](beast::error_code ec, std::size_t) {
     if (ec || !held->keep_alive()) return self->close();
     self->read_request();
   });
 }
 
-// Half-closes, then discards what the client still sends (for a few seconds at most), so that
-// closing does not reset the connection and destroy the response in flight.
-void HttpConnection::close() {
-  beast::error_code ignored;
-  stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
-  stream_.expires_after(std::chrono::seconds(3));
-  drain();
+// Half-closes (with TLS, its close_notify first), then discards what the client still sends (for
+// a few seconds at most), so that closing does not reset the connection and destroy the response
+// in flight.
+template <class Stream>
+void HttpConnection<Stream>::close() {
+  tcp().expires_after(std::chrono::seconds(3));
+  const auto half_close = [self = this->shared_from_this()] {
+    beast::error_code ignored;
+    self->tcp().socket().shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
+    self->drain();
+  };
+  if constexpr (std::is_same_v<Stream, TlsStream>)
+    stream_.async_shutdown([half_close](beast::error_code) { half_close(); });
+  else
+    half_close();
 }
 
-void HttpConnection::drain() {
+template <class Stream>
+void HttpConnection<Stream>::drain() {
   auto scratch = std::make_shared<std::array<char, 16384>>();
-  stream_.async_read_some(asio::buffer(*scratch),
-                          [self = shared_from_this(), scratch](beast::error_code ec, std::size_t) {
-                            if (ec) return self->stream_.close();
-                            self->drain();
-                          });
+  tcp().async_read_some(asio::buffer(*scratch),
+                        [self = this->shared_from_this(), scratch](beast::error_code ec, std::size_t) {
+                          if (ec) return self->tcp().close();
+                          self->drain();
+                        });
 }
+
+template class HttpConnection<beast::tcp_stream>;
+template class HttpConnection<TlsStream>;
 
 }  // namespace fnet::web

@@ -8,6 +8,7 @@
 
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 
 #include "server/rpc/connection.hpp"
 #include "server/rpc/peer.hpp"
@@ -21,13 +22,18 @@ using Response = boost::beast::http::response<boost::beast::http::string_body>;
 // whose body says what is wrong.
 Response answer(const Request& request);
 
-class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
+using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
+
+// `Stream`: boost::beast::tcp_stream (http, ws) or TlsStream (https, wss), whose handshake must
+// end within first_request_timeout, else the connection is closed and its slot freed.
+template <class Stream>
+class HttpConnection : public std::enable_shared_from_this<HttpConnection<Stream>> {
  public:
   // `slot` is held while the connection lives (its WebSocket peer included): the count of
   // connections goes down when the last holder ends.
-  HttpConnection(boost::asio::ip::tcp::socket socket, rpc::Strand strand, const rpc::ServerLimits& limits,
-                 const rpc::Handler& handler, const rpc::Access& access, unsigned short port,
-                 std::shared_ptr<void> slot);
+  HttpConnection(Stream stream, rpc::Strand strand, const rpc::ServerLimits& limits, const rpc::Handler& handler,
+                 const rpc::Access& access, unsigned short port, std::shared_ptr<void> slot);
+  // The TLS handshake if any, then the first request.
   void start();
 
  private:
@@ -36,8 +42,9 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   void send(Response response);
   void close();
   void drain();
+  boost::beast::tcp_stream& tcp() { return boost::beast::get_lowest_layer(stream_); }
 
-  boost::beast::tcp_stream stream_;
+  Stream stream_;
   rpc::Strand strand_;
   boost::beast::flat_buffer buffer_;
   std::unique_ptr<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;

@@ -11,8 +11,10 @@ namespace {
 constexpr std::size_t kReadChunk = 64 << 10;
 }
 
-WebSocketPeer::WebSocketPeer(beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                             const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end)
+template <class Stream>
+WebSocketPeer<Stream>::WebSocketPeer(Stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
+                                     const rpc::Handler& handler, const rpc::Access& access,
+                                     std::function<void()> on_end)
     : Connection(std::move(strand), "", limits, handler, access, true, std::move(on_end)), ws_(std::move(stream)) {
   // The bound on a message is ours (read_next), so that its client is told why it is closed.
   ws_.read_message_max(0);
@@ -20,9 +22,10 @@ WebSocketPeer::WebSocketPeer(beast::tcp_stream stream, rpc::Strand strand, const
   ws_.text(true);
 }
 
-void WebSocketPeer::accept(beast::http::request<beast::http::string_body> upgrade) {
+template <class Stream>
+void WebSocketPeer<Stream>::accept(beast::http::request<beast::http::string_body> upgrade) {
   auto request = std::make_shared<beast::http::request<beast::http::string_body>>(std::move(upgrade));
-  asio::post(strand_, [self = self(), request] {
+  asio::post(strand_, [self = this->self(), request] {
     self->ws_.async_accept(*request, asio::bind_executor(self->strand_, [self, request](beast::error_code ec) {
       if (ec) return self->close();
       self->start();
@@ -32,9 +35,10 @@ void WebSocketPeer::accept(beast::http::request<beast::http::string_body> upgrad
 
 // A message is read in chunks, so that one longer than the limit is refused once the limit is
 // passed, before the rest of it is held.
-void WebSocketPeer::read_next() {
+template <class Stream>
+void WebSocketPeer<Stream>::read_next() {
   ws_.async_read_some(
-      input_, kReadChunk, asio::bind_executor(strand_, [self = self()](beast::error_code ec, std::size_t) {
+      input_, kReadChunk, asio::bind_executor(strand_, [self = this->self()](beast::error_code ec, std::size_t) {
         if (ec == websocket::error::closed) return self->input_ended();
         if (ec) return self->close();
         if (self->input_.size() > self->limits_.max_line_bytes) {
@@ -58,24 +62,34 @@ void WebSocketPeer::read_next() {
       }));
 }
 
-void WebSocketPeer::write(const std::string& text) {
-  ws_.async_write(asio::buffer(text), asio::bind_executor(strand_, [self = self()](beast::error_code ec, std::size_t) {
-                    self->written(ec);
-                  }));
+template <class Stream>
+void WebSocketPeer<Stream>::write(const std::string& text) {
+  ws_.async_write(
+      asio::buffer(text),
+      asio::bind_executor(strand_, [self = this->self()](beast::error_code ec, std::size_t) { self->written(ec); }));
 }
 
-bool WebSocketPeer::is_open() const { return beast::get_lowest_layer(ws_).socket().is_open(); }
+template <class Stream>
+bool WebSocketPeer<Stream>::is_open() const {
+  return beast::get_lowest_layer(ws_).socket().is_open();
+}
 
 // The closing handshake (bounded by the stream's handshake timeout), then the socket.
-void WebSocketPeer::finish() {
-  ws_.async_close(close_code_, asio::bind_executor(strand_, [self = self()](beast::error_code) { self->close(); }));
+template <class Stream>
+void WebSocketPeer<Stream>::finish() {
+  ws_.async_close(close_code_,
+                  asio::bind_executor(strand_, [self = this->self()](beast::error_code) { self->close(); }));
 }
 
-void WebSocketPeer::close_transport() {
+template <class Stream>
+void WebSocketPeer<Stream>::close_transport() {
   beast::error_code ignored;
   auto& socket = beast::get_lowest_layer(ws_).socket();
   socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket.close(ignored);
 }
+
+template class WebSocketPeer<beast::tcp_stream>;
+template class WebSocketPeer<beast::ssl_stream<beast::tcp_stream>>;
 
 }  // namespace fnet::web

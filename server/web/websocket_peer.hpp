@@ -10,18 +10,21 @@
 
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
 
 #include "server/rpc/connection.hpp"
 
 namespace fnet::web {
 
+// `Stream`: boost::beast::tcp_stream (ws) or a TLS stream over one (wss), its handshake done.
+template <class Stream>
 class WebSocketPeer final : public rpc::Connection {
  public:
   // The upgrade was admitted (http_access.hpp): the connection has presented the token `access`
   // asks for, if any.
-  WebSocketPeer(boost::beast::tcp_stream stream, rpc::Strand strand, const rpc::ServerLimits& limits,
-                const rpc::Handler& handler, const rpc::Access& access, std::function<void()> on_end);
+  WebSocketPeer(Stream stream, rpc::Strand strand, const rpc::ServerLimits& limits, const rpc::Handler& handler,
+                const rpc::Access& access, std::function<void()> on_end);
   // Completes the opening handshake that `upgrade` asked for, then reads.
   void accept(boost::beast::http::request<boost::beast::http::string_body> upgrade);
 
@@ -34,7 +37,7 @@ class WebSocketPeer final : public rpc::Connection {
   void finish() override;
   void close_transport() override;
 
-  boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
+  boost::beast::websocket::stream<Stream> ws_;
   boost::beast::flat_buffer input_;
   boost::beast::websocket::close_code close_code_ = boost::beast::websocket::close_code::normal;
 };

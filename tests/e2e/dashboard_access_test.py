@@ -1,7 +1,8 @@
 """Who may use fnet-server beyond loopback, on addresses inside two network namespaces the test
 creates (a server host and a client host joined by a veth pair, as tests/e2e/multihost_test.sh
 makes its hosts; DDS domain 88). fnet-server refuses to listen on a non-loopback address without
---token-file; with one, a connection that does not present the token gets error -32007 and is
+TLS (tests/e2e/tls_test.py tests TLS itself; here a certificate made by openssl for SERVER_IP, and
+every client speaks TLS); with --token-file, a connection that does not present the token gets error -32007 and is
 closed before any method runs — on the TCP API (raw, fnetctl, the Python client) and on the
 dashboard (401 for the page and the WebSocket) — while fnetctl --token-file, FNET_TOKEN,
 fnet.Client(token=...) and the page opened once with ?token= are served.
@@ -13,6 +14,7 @@ import json
 import os
 import shutil
 import socket
+import ssl
 import subprocess
 import sys
 import time
@@ -33,9 +35,14 @@ def client_checks(source_dir, build_dir, token_file):
 
     fnetctl = os.path.join(build_dir, "bin", "fnetctl")
     env = {k: v for k, v in os.environ.items() if k != "FNET_TOKEN"}
+    cert = os.path.join(os.path.dirname(token_file), "cert.pem")
+    tls = ssl.create_default_context(cafile=cert)
+
+    def connect():
+        return tls.wrap_socket(socket.create_connection((SERVER_IP, API_PORT), timeout=10), server_hostname=SERVER_IP)
 
     # The TCP API, raw: the first request is not auth, so it is refused and the connection closed.
-    with socket.create_connection((SERVER_IP, API_PORT), timeout=10) as s:
+    with connect() as s:
         s.sendall(b'{"jsonrpc":"2.0","id":1,"method":"runs.list"}\n{"jsonrpc":"2.0","id":2,"method":"runs.list"}\n')
         f = s.makefile()
         refusal = json.loads(f.readline())
@@ -52,39 +59,39 @@ def client_checks(source_dir, build_dir, token_file):
         request = dict(example["first request"])
         if token:
             request["params"] = {"token": token}
-        with socket.create_connection((SERVER_IP, API_PORT), timeout=10) as s:
+        with connect() as s:
             s.sendall((json.dumps(request) + "\n").encode())
             answer = json.loads(s.makefile().readline())
         assert answer == expected, (answer, expected)
     print("ok: proto/api.md's auth exchanges, the right token and a wrong one")
 
     # fnetctl: without the token it fails naming the auth request; with --token-file or FNET_TOKEN it works.
-    bare = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "runs"], env=env,
+    bare = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "--tls-ca", cert, "runs"], env=env,
                           capture_output=True, text=True, timeout=60)
     assert bare.returncode == 5 and "token" in bare.stderr, (bare.returncode, bare.stderr)
-    with_file = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "--token-file", token_file,
-                                "status"], env=env, capture_output=True, text=True, timeout=60)
+    with_file = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "--tls-ca", cert,
+                                "--token-file", token_file, "status"], env=env, capture_output=True, text=True, timeout=60)
     assert with_file.returncode == 0, with_file.stderr
-    with_env = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "status"],
+    with_env = subprocess.run([fnetctl, "--host", SERVER_IP, "--port", str(API_PORT), "--tls-ca", cert, "status"],
                               env=dict(env, FNET_TOKEN=TOKEN), capture_output=True, text=True, timeout=60)
     assert with_env.returncode == 0, with_env.stderr
     print("ok: fnetctl is refused without the token, served with --token-file and with FNET_TOKEN")
 
     # The Python client.
     try:
-        fnet.Client(SERVER_IP, API_PORT).runs()
+        fnet.Client(SERVER_IP, API_PORT, tls=tls).runs()
         raise AssertionError("the Python client was served without the token")
     except fnet.RpcError as e:
         assert e.code == fnet.rpc.UNAUTHORIZED, e
-    assert fnet.Client(SERVER_IP, API_PORT, token=TOKEN).runs() == []
+    assert fnet.Client(SERVER_IP, API_PORT, token=TOKEN, tls=tls).runs() == []
     os.environ["FNET_TOKEN"] = TOKEN
-    assert fnet.Client(SERVER_IP, API_PORT).status()["ingest"] == "running"
+    assert fnet.Client(SERVER_IP, API_PORT, tls=tls).status()["ingest"] == "running"
     del os.environ["FNET_TOKEN"]
     print("ok: the Python client is refused without the token, served with token= and FNET_TOKEN")
 
     # The dashboard: 401 without the token; the page opened once with ?token= sets the cookie.
-    base = f"http://{SERVER_IP}:{HTTP_PORT}"
-    no_redirect = urllib.request.build_opener(NoRedirect)
+    base = f"https://{SERVER_IP}:{HTTP_PORT}"
+    no_redirect = urllib.request.build_opener(NoRedirect, urllib.request.HTTPSHandler(context=tls))
     for path in ("/", "/rpc", "/index.html"):
         try:
             no_redirect.open(base + path, timeout=10)
@@ -98,15 +105,17 @@ def client_checks(source_dir, build_dir, token_file):
         assert e.code == 303, e.code
         assert e.headers["Location"] == "/", e.headers["Location"]
         cookie = e.headers["Set-Cookie"].split(";")[0]
+        assert "Secure" in e.headers["Set-Cookie"], e.headers["Set-Cookie"]
     assert cookie == f"fnet_token_{HTTP_PORT}={TOKEN}", cookie
-    page = urllib.request.urlopen(urllib.request.Request(base + "/", headers={"Cookie": cookie}), timeout=10)
+    page = urllib.request.urlopen(urllib.request.Request(base + "/", headers={"Cookie": cookie}), timeout=10,
+                                  context=tls)
     assert page.status == 200 and b"<html" in page.read()
     try:
-        WebSocket(SERVER_IP, HTTP_PORT, cookie=None)
+        WebSocket(SERVER_IP, HTTP_PORT, cookie=None, tls=tls)
         raise AssertionError("the WebSocket opened without the token")
     except HandshakeRefused as e:
         assert e.status == 401, e
-    ws = WebSocket(SERVER_IP, HTTP_PORT, cookie=cookie, origin=base)
+    ws = WebSocket(SERVER_IP, HTTP_PORT, cookie=cookie, origin=base, tls=tls)
     answer = ws.call("runs.list")
     assert answer["result"] == {"runs": []}, answer
     ws.close()
@@ -149,11 +158,15 @@ def main():
         flags = ["--data-dir", os.path.join(work, "data"), "--bind", SERVER_IP, "--port", str(API_PORT),
                  "--http-port", str(HTTP_PORT), "--domain", str(DOMAIN), "--threads", "1"]
 
-        # No token: refused at start, naming what is missing.
+        # No TLS: refused at start, naming what is missing.
         refused = subprocess.run(on_server + [server] + flags, env=env, capture_output=True, text=True, timeout=60)
         assert refused.returncode == 2, (refused.returncode, refused.stderr)
-        assert "--token-file" in refused.stderr and SERVER_IP in refused.stderr, refused.stderr
-        print(f"ok: fnet-server refuses --bind {SERVER_IP} without --token-file: {refused.stderr.strip()}")
+        assert "--tls-cert" in refused.stderr and SERVER_IP in refused.stderr, refused.stderr
+        print(f"ok: fnet-server refuses --bind {SERVER_IP} without TLS: {refused.stderr.strip()}")
+        sh("openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes", "-days",
+           "1", "-subj", f"/CN={SERVER_IP}", "-addext", f"subjectAltName=IP:{SERVER_IP}", "-keyout",
+           os.path.join(work, "key.pem"), "-out", os.path.join(work, "cert.pem"))
+        flags += ["--tls-cert", os.path.join(work, "cert.pem"), "--tls-key", os.path.join(work, "key.pem")]
         token_file = os.path.join(work, "token")
         with open(token_file, "w") as f:
             f.write(TOKEN + "\n")

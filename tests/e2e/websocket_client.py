@@ -18,8 +18,11 @@ class HandshakeRefused(Exception):
 
 
 class WebSocket:
-    def __init__(self, host, port, path="/rpc", cookie=None, origin=None, timeout=30.0):
+    def __init__(self, host, port, path="/rpc", cookie=None, origin=None, timeout=30.0, tls=None):
+        """`tls`: an ssl.SSLContext to speak wss (the host name checked against the certificate)."""
         self.sock = socket.create_connection((host, port), timeout=timeout)
+        if tls is not None:
+            self.sock = tls.wrap_socket(self.sock, server_hostname=host)
         key = base64.b64encode(os.urandom(16)).decode()
         lines = [f"GET {path} HTTP/1.1", f"Host: {host}:{port}", "Upgrade: websocket", "Connection: Upgrade",
                  f"Sec-WebSocket-Key: {key}", "Sec-WebSocket-Version: 13"]

@@ -9,6 +9,7 @@ import json
 import math
 import os
 import socket
+import ssl
 import time
 
 import numpy as np
@@ -41,12 +42,26 @@ def _params(**given):
 _DEFAULT = object()  # a connection's own timeout
 
 
+def _tls_context(tls):
+    """None (plain TCP), or the SSLContext of `tls`: True for the system's trusted authorities."""
+    if not tls:
+        return None
+    return tls if isinstance(tls, ssl.SSLContext) else ssl.create_default_context()
+
+
 class _Connection:
     """One TCP connection: requests out, lines in; notifications kept until asked for. With a
-    `token`, it is presented first (proto/api.md, "Access")."""
+    `token`, it is presented first (proto/api.md, "Access"); with `tls` (an SSLContext), the
+    connection speaks TLS, the server's certificate checked against the host name."""
 
-    def __init__(self, host, port, timeout, token=None):
+    def __init__(self, host, port, timeout, token=None, tls=None):
         self._sock = socket.create_connection((host, port), timeout=timeout)
+        if tls is not None:
+            try:
+                self._sock = tls.wrap_socket(self._sock, server_hostname=host)
+            except BaseException:
+                self._sock.close()
+                raise
         self._timeout = timeout
         self._buffer = bytearray()  # kept across a timeout: a line is never lost half read
         self._next_id = 1
@@ -193,8 +208,8 @@ class Subscription:
     with-block, or close(), unsubscribes and closes the connection."""
 
     def __init__(self, host, port, timeout, method, params, notification, unsubscribe, convert, track=None,
-                 token=None):
-        self._conn = _Connection(host, port, timeout, token)
+                 token=None, tls=None):
+        self._conn = _Connection(host, port, timeout, token, tls)
         self._notification = notification
         self._unsubscribe = unsubscribe
         self._convert = convert
@@ -259,13 +274,16 @@ class Client:
     """A connection to fnet-server, opened on the first call. Where the server is: `host` and
     `port`, else FNET_HOST and FNET_PORT from the environment (as fnetctl), else 127.0.0.1:7707.
     `token`, else FNET_TOKEN: the token a server started with --token-file asks for, presented
-    on each connection before any call. Usable as a context manager (closes the connection)."""
+    on each connection before any call. `tls`: True to speak TLS to a server given --tls-cert (its
+    certificate verified against the system's authorities), or an ssl.SSLContext (e.g.
+    ssl.create_default_context(cafile=...)). Usable as a context manager (closes the connection)."""
 
-    def __init__(self, host=None, port=None, timeout=60.0, token=None):
+    def __init__(self, host=None, port=None, timeout=60.0, token=None, tls=None):
         self.host = host or os.environ.get("FNET_HOST") or DEFAULT_HOST
         self.port = int(port if port is not None else (os.environ.get("FNET_PORT") or DEFAULT_PORT))
         self.timeout = timeout
         self.token = token or os.environ.get("FNET_TOKEN") or None
+        self.tls = _tls_context(tls)
         self._conn = None
 
     def __enter__(self):
@@ -283,7 +301,7 @@ class Client:
         """Any method by name, with its params as a dict; the raw result."""
         reused = self._conn is not None
         if not reused:
-            self._conn = _Connection(self.host, self.port, self.timeout, self.token)
+            self._conn = _Connection(self.host, self.port, self.timeout, self.token, self.tls)
         try:
             return self._conn.call(method, params)
         except (OSError, ConnectionError):
@@ -292,7 +310,7 @@ class Client:
                 raise
         # The server closes a connection left idle (proto/api.md, Limits): once more, on a new one.
         # Every method a Client calls only reads, so asking twice is safe.
-        self._conn = _Connection(self.host, self.port, self.timeout, self.token)
+        self._conn = _Connection(self.host, self.port, self.timeout, self.token, self.tls)
         try:
             return self._conn.call(method, params)
         except (OSError, ConnectionError):
@@ -374,7 +392,7 @@ class Client:
                     raise
                 time.sleep(max(min(0.5, deadline - time.monotonic()), 0.0))
         return Subscription(self.host, self.port, self.timeout, "series.subscribe", _params(run=run, since=since),
-                            "series.point", "series.unsubscribe", Result, token=self.token)
+                            "series.point", "series.unsubscribe", Result, token=self.token, tls=self.tls)
 
     def subscribe_ensemble(self, ensemble=None, run=None, metric=None, dim=DEFAULT_DIM, force="normal", q=None,
                            essential="floor", bin_width=None, bins=None, axis=None, ratio=None):
@@ -382,7 +400,8 @@ class Client:
         with numpy arrays; `reply` is the curve when subscribing and `curve` the curve with every
         notification taken so far applied (apply_bins)."""
         return Subscription(self.host, self.port, self.timeout, "ensemble.subscribe", _ensemble_params(**locals()),
-                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series, apply_bins, token=self.token)
+                            "ensemble.bins", "ensemble.unsubscribe", _ensemble_series, apply_bins, token=self.token,
+                            tls=self.tls)
 
 
 def _ensemble_params(self=None, **given):
