@@ -8,6 +8,7 @@
 
 #include "common/codec/run_info_json.hpp"
 #include "common/run/particle_columns.hpp"
+#include "common/run/run_names.hpp"
 #include "common/store/hdf5_io.hpp"
 
 namespace fnet {
@@ -39,6 +40,7 @@ std::vector<char> padded(const std::string& text, std::size_t bytes) {
 std::vector<std::string> read_strings(hid_t file, const char* name, std::size_t bytes, const std::string& where) {
   h5::Dataset set(H5Dopen2(file, name, H5P_DEFAULT), where + ": open " + name);
   const std::size_t rows = h5::row_count(file, name, where);
+  h5::check_fits_in_file(set.get(), rows, bytes, name, where);
   std::vector<char> raw(rows * bytes);
   const h5::Datatype type = fixed_string(bytes);
   if (rows) check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()), where + ": read " + name);
@@ -107,8 +109,13 @@ std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std:
       !wrong.empty())
     throw h5::Error(where + ": frame " + std::to_string(index) + ": " + wrong);
   f.contacts.reserve(m);
-  for (std::size_t k = 0; k < m; ++k)
+  for (std::size_t k = 0; k < m; ++k) {
+    if (pairs[2 * k] >= n || pairs[2 * k + 1] >= n)
+      throw h5::Error(where + ": frame " + std::to_string(index) + ": contact " + std::to_string(k) + " joins grains " +
+                      std::to_string(pairs[2 * k]) + " and " + std::to_string(pairs[2 * k + 1]) + " of " +
+                      std::to_string(n));
     f.contacts.push_back({pairs[2 * k], pairs[2 * k + 1], forces[2 * k], forces[2 * k + 1]});
+  }
   return f;
 }
 
@@ -214,10 +221,7 @@ void StoreWriter::create(const std::filesystem::path& path, const std::filesyste
     // The networks are copied one frame at a time, so that continuing a long run's store never
     // holds all of them.
     std::optional<h5::File> old;
-    if (previous->schema != kStoreSchemaV1) {
-      const h5::PropertyList old_fapl = h5::swmr_read_access();
-      old.emplace(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, old_fapl.get()), "open " + path.string());
-    }
+    if (previous->schema != kStoreSchemaV1) old.emplace(h5::open_for_reading(path.string()));
     for (std::size_t k = 0; k < previous->frames.size(); ++k) {
       AnalyzedFrame& f = previous->frames[k];
       if (old && previous->has_network[k])
@@ -334,6 +338,45 @@ bool StoreWriter::holds_rejection(std::uint32_t index) const {
 
 namespace {
 
+// One committed row of a store as read: pointers into the columns read whole.
+struct StoredFrameRow {
+  std::uint32_t frame;
+  std::int64_t previous;
+  std::uint32_t dimension;
+  const std::uint64_t* offsets;           // kPointOffsets
+  const std::uint64_t* previous_offsets;  // the row before's; null for the first row
+  const std::uint64_t* counts;            // kCounts
+  const std::uint64_t* network_offsets;   // kNetworkOffsets; null when the network is not stored
+};
+
+// Why a committed row cannot be served (empty when it can). The rules a writer keeps: frames
+// ascending, `previous` an earlier frame (or -1), every diagram's points a range of `points`
+// after the row before's, the network's ranges ordered and as many grains as the network's
+// vertices. The ranges' ends were checked against the datasets' extents by the caller.
+std::string stored_frame_problem(const StoredFrameRow& r, std::optional<std::uint32_t> frame_before) {
+  if (frame_before && r.frame <= *frame_before)
+    return "frame indices not ascending (" + std::to_string(*frame_before) + " then " + std::to_string(r.frame) + ")";
+  if (r.previous < -1 || r.previous >= static_cast<std::int64_t>(r.frame))
+    return "previous frame " + std::to_string(r.previous) + " is not an earlier frame";
+  if (r.dimension != 2 && r.dimension != 3) return "dimension " + std::to_string(r.dimension) + ", expected 2 or 3";
+  const std::uint64_t start = r.previous_offsets ? r.previous_offsets[kPointOffsets - 1] : 0;
+  if (r.offsets[0] < start)
+    return "its points start at row " + std::to_string(r.offsets[0]) + ", inside the frame before's (which end at " +
+           std::to_string(start) + ")";
+  for (std::size_t d = 0; d + 1 < kPointOffsets; ++d)
+    if (r.offsets[d + 1] < r.offsets[d])
+      return "offsets not ascending (" + std::to_string(r.offsets[d]) + " then " + std::to_string(r.offsets[d + 1]) +
+             ")";
+  if (const std::uint64_t* n = r.network_offsets) {
+    if (n[1] < n[0] || n[3] < n[2])
+      return "network_offsets not ordered (" + std::to_string(n[0]) + ", " + std::to_string(n[1]) + ", " +
+             std::to_string(n[2]) + ", " + std::to_string(n[3]) + ")";
+    if (n[1] - n[0] != r.counts[0])
+      return "its network has " + std::to_string(n[1] - n[0]) + " grains, its counts " + std::to_string(r.counts[0]);
+  }
+  return "";
+}
+
 // The column of `distances` holding each entry of kStoredSeries: the store's `series` attribute
 // names its columns; stores written before it have the order of kStoredSeries.
 std::array<std::size_t, kSeries> series_columns(hid_t root, const std::string& file) {
@@ -368,10 +411,8 @@ std::array<std::size_t, kSeries> series_columns(hid_t root, const std::string& f
 StoredRun read_store(const std::filesystem::path& path) {
   h5::quiet();
   const std::string file = path.string();
-  const h5::PropertyList fapl = h5::swmr_read_access();
   // SWMR read opens a store whose writer is still running, or was killed.
-  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
-             "open " + file + " (not an HDF5 store?)");
+  const h5::File f = h5::open_for_reading(file);
   h5::Group root(H5Gopen2(f.get(), "/", H5P_DEFAULT), file + ": open /");
   const std::string schema = h5::read_string(root.get(), "schema", file);
   if (schema != kStoreSchema && schema != kStoreSchemaV2 && schema != kStoreSchemaV1)
@@ -383,12 +424,17 @@ StoredRun read_store(const std::filesystem::path& path) {
   out.schema = schema;
   out.provenance = read_provenance(root.get(), file);
   out.info.run_id = h5::read_string(root.get(), "run_id", file);
+  if (const std::string wrong = run_id_problem(out.info.run_id); !wrong.empty()) throw h5::Error(file + ": " + wrong);
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {
     try {
       out.info = run_info_from_json(parse_bounded_json(announcements.back(), kAnnouncementJsonLimits, "JSON"));
       out.has_info = true;
-    } catch (const std::exception& e) {  // JsonInputError, or nlohmann's for a field missing or mistyped
+      if (out.info.run_id != h5::read_string(root.get(), "run_id", file))
+        throw h5::Error(file + ": its announcement names run '" + out.info.run_id + "', its attribute run_id another");
+    } catch (const nlohmann::json::exception& e) {
+      throw h5::Error(file + ": unreadable run announcement: " + e.what());
+    } catch (const JsonInputError& e) {
       throw h5::Error(file + ": unreadable run announcement: " + e.what());
     }
   }
@@ -438,6 +484,16 @@ StoredRun read_store(const std::filesystem::path& path) {
                       " bound no rows");
     if (off[kPointOffsets - 1] > points.size() / 2) break;                // its points never reached the file
     if (net && (net[1] > particle_rows || net[3] > contact_rows)) break;  // its network never reached the file
+    const StoredFrameRow row{frame[k],
+                             previous[k],
+                             dimension[k],
+                             off,
+                             k ? &offsets[(k - 1) * kPointOffsets] : nullptr,
+                             &counts[k * kCounts],
+                             stored ? &network_offsets[k * kNetworkOffsets] : nullptr};
+    if (const std::string wrong = stored_frame_problem(row, k ? frame[k - 1] : std::optional<std::uint32_t>{});
+        !wrong.empty())
+      throw h5::Error(file + ": row " + std::to_string(k) + " (frame " + std::to_string(frame[k]) + "): " + wrong);
     AnalyzedFrame a;
     a.header = {out.info.run_id, frame[k], step[k], time[k], rho[k], z[k]};
     if (previous[k] >= 0) a.previous = static_cast<std::uint32_t>(previous[k]);
@@ -474,10 +530,19 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
     throw h5::Error(path.string() + ": run " + run.info.run_id + " has no committed frame " + std::to_string(index));
   const std::size_t row = static_cast<std::size_t>(it - run.frames.begin());
   if (!run.has_network[row]) return std::nullopt;
-  const h5::PropertyList fapl = h5::swmr_read_access();
-  h5::File f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()), "open " + path.string());
+  const h5::File f = h5::open_for_reading(path.string());
   return network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, index, it->diagrams.normal.vertices,
                     path.string());
+}
+
+StoredRun read_store_in_data_dir(const std::filesystem::path& path) {
+  const std::string name = path.stem().string();
+  if (path.extension() != ".h5" || !run_id_problem(name).empty())
+    throw h5::Error(path.string() + ": not a store's file name (RUN.h5, " + run_id_problem(name) + ")");
+  StoredRun run = read_store(path);
+  if (run.info.run_id != name)
+    throw h5::Error(path.string() + ": holds run '" + run.info.run_id + "', not the run its file name says");
+  return run;
 }
 
 }  // namespace fnet

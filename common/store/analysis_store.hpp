@@ -77,8 +77,14 @@ class StoreWriter {
   std::map<std::string, h5::Dataset> sets_;  // declared after file_: closed before it
 };
 
-// Throws h5::Error naming the file and what is missing or malformed.
+// Throws h5::Error naming the file and what is missing or malformed: anything but a regular file,
+// a run id that is not a valid one (run_names.hpp), any committed row whose offsets, counts or
+// frame indices break the schema's rules, a dataset larger than the file. Bounded in time: a
+// corrupted file fails after kMetadataReadAttempts reads of its metadata.
 StoredRun read_store(const std::filesystem::path& path);
+// read_store for a store found in a data directory, which is written again under its run's name:
+// the file must be named RUN.h5 after the run id it holds.
+StoredRun read_store_in_data_dir(const std::filesystem::path& path);
 // The force network of committed frame `index` of a store (opened read-only in SWMR mode: not
 // for a store this process is writing, use StoreWriter::network); nullopt as StoreWriter::network.
 std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32_t index);

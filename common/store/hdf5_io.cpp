@@ -2,6 +2,9 @@
 
 #include <array>
 #include <string_view>
+#include <cerrno>
+#include <cstring>
+#include <sys/stat.h>
 
 namespace fnet::h5 {
 namespace {
@@ -40,6 +43,7 @@ std::vector<T> read_any_array(hid_t group, const char* name, hid_t type, std::si
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   if (rank != (cols ? 2 : 1) || (cols && dims[1] != cols))
     throw Error(where + ": dataset '" + name + "' has the wrong shape");
+  check_fits_in_file(set.get(), dims[0], (cols ? cols : 1) * sizeof(T), name, where);
   std::vector<T> out(dims[0] * (cols ? cols : 1));
   if (!out.empty())
     check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), where + ": read " + name);
@@ -66,6 +70,25 @@ std::string system_cause() {
   return cause.empty() ? cause : " (" + cause + ")";
 }
 
+void check_fits_in_file(hid_t dataset, std::size_t rows, std::size_t row_bytes, const char* name,
+                        const std::string& where) {
+  Handle<H5Fclose> file(H5Iget_file_id(dataset), where + ": file of " + name);
+  hsize_t file_bytes = 0;
+  check(H5Fget_filesize(file.get(), &file_bytes), where + ": size of the file");
+  if (row_bytes != 0 && rows > file_bytes / row_bytes)
+    throw Error(where + ": dataset '" + name + "' claims " + std::to_string(rows) + " rows of " +
+                std::to_string(row_bytes) + " bytes, more than the file's " + std::to_string(file_bytes) + " bytes");
+}
+
+File open_for_reading(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw Error(path + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw Error(path + ": not a regular file");
+  const PropertyList fapl = swmr_read_access();
+  return File(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.get()),
+              "open " + path + " (not an HDF5 store?)");
+}
+
 PropertyList latest_format() {
   PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");
@@ -74,7 +97,7 @@ PropertyList latest_format() {
 
 PropertyList swmr_read_access() {
   PropertyList fapl = latest_format();
-  check(H5Pset_metadata_read_attempts(fapl.get(), kSwmrReadAttempts), "H5Pset_metadata_read_attempts");
+  check(H5Pset_metadata_read_attempts(fapl.get(), kMetadataReadAttempts), "H5Pset_metadata_read_attempts");
   return fapl;
 }
 

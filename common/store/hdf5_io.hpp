@@ -15,11 +15,17 @@ void quiet();
 
 // File access with the latest format, which SWMR (single writer, readers while it writes) needs.
 PropertyList latest_format();
-// File access for a SWMR reader: the latest format, and a piece of metadata whose checksum fails
-// read at most kSwmrReadAttempts times. HDF5's default, 100 attempts each sleeping longer, meant
-// for a writer caught mid-flush, held the reader of a file damaged on disk for half an hour.
-inline constexpr unsigned kSwmrReadAttempts = 4;
+// How many times a SWMR reader reads a piece of metadata whose checksum fails before it gives up
+// (HDF5's default is 100, with a growing sleep between attempts: half an hour on a file damaged
+// on disk). A few attempts cover a read torn by a live writer.
+inline constexpr unsigned kMetadataReadAttempts = 4;
+// File access for a SWMR reader: the latest format and kMetadataReadAttempts.
 PropertyList swmr_read_access();
+
+// Opens a file read-only in SWMR mode with the latest format and kMetadataReadAttempts. Only a
+// regular file is opened (after symbolic links): anything else (a FIFO, a device, a directory)
+// is refused without being opened, since opening a FIFO blocks until a writer comes.
+File open_for_reading(const std::string& path);
 
 void write_attribute(hid_t obj, const char* name, double v);
 void write_attribute(hid_t obj, const char* name, std::uint32_t v);
@@ -60,6 +66,11 @@ void append_rows(hid_t dataset, hid_t type, const void* data, std::size_t rows, 
 // Reads rows [first, first + rows) of an open dataset (rows x cols, row-major) into `out`.
 void read_rows(hid_t dataset, hid_t type, void* out, std::size_t first, std::size_t rows, std::size_t cols,
                const std::string& where);
+// Throws unless `rows` rows of `row_bytes` bytes fit in the file that holds `dataset`: an
+// uncompressed dataset (every one fnet writes) never holds more, and a corrupted extent must not
+// make a reader allocate (or read) more than the file.
+void check_fits_in_file(hid_t dataset, std::size_t rows, std::size_t row_bytes, const char* name,
+                        const std::string& where);
 // The number of rows of a dataset.
 std::size_t row_count(hid_t loc, const char* name, const std::string& where);
 

@@ -189,6 +189,7 @@ json server_status(const ApiContext& ctx) {
             {"skipped", c.skipped},
             {"malformed", c.malformed}}},
           {"rejections", rejections},
+          {"refused_stores", r.refused_stores()},
           {"connections", ctx.connections()},
           {"subscriptions", r.subscriptions()}};
 }

@@ -209,7 +209,7 @@ std::vector<std::string> Registry::load_stores(std::vector<std::string>* only_ne
   std::vector<std::string> problems;
   for (const std::filesystem::path& path : paths) {
     try {
-      StoredRun stored = read_store(path);
+      StoredRun stored = read_store_in_data_dir(path);
       std::lock_guard lock(mutex_);
       if (only_new && runs_.count(stored.info.run_id)) continue;  // it started streaming meanwhile
       Run& run = run_locked(stored.info.run_id);
@@ -230,7 +230,15 @@ std::vector<std::string> Registry::load_stores(std::vector<std::string>* only_ne
       problems.push_back(e.what());
     }
   }
+  // Every scan reads each store the server does not serve, so its problems are all the refused ones.
+  std::lock_guard lock(mutex_);
+  refused_stores_ = problems;
   return problems;
+}
+
+std::vector<std::string> Registry::refused_stores() const {
+  std::lock_guard lock(mutex_);
+  return refused_stores_;
 }
 
 Registry::Run& Registry::run_locked(const std::string& run_id) {

@@ -100,6 +100,9 @@ class Registry {
     std::vector<std::string> problems;
   };
   Adopted adopt_new_stores();
+  // The stores of the data directory the last load or rescan refused (a corrupt file, a file
+  // that is not a regular one, a run id that is not a file name): each names its file and why.
+  std::vector<std::string> refused_stores() const;
 
   void on_info(const RunInfo& info);
   // Called with each new announcement of a run, once it is recorded, off the registry's lock: from
@@ -242,6 +245,7 @@ class Registry {
   std::uint64_t next_subscription_ = 1;
   Counters counters_;
   std::deque<std::string> recent_rejections_;
+  std::vector<std::string> refused_stores_;
   std::deque<Clock::time_point> recent_commits_;
 };
 

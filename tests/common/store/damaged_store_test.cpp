@@ -1,5 +1,5 @@
 // A store damaged on disk is refused promptly, naming the file and what is wrong: a piece of
-// metadata that fails its checksum is read h5::kSwmrReadAttempts times, not HDF5's default of a
+// metadata that fails its checksum is read h5::kMetadataReadAttempts times, not HDF5's default of a
 // hundred times with longer and longer sleeps, meant for a writer caught mid-flush, which held a
 // server's start for over ten minutes; offsets that decrease, which had the reader index past its
 // arrays or ask for exabytes, are named.
