@@ -61,9 +61,9 @@ class BoundedDom : public Dom {
 
 nlohmann::json parse_bounded_json(std::string_view text, const JsonLimits& limits, const std::string& source) {
   if (text.size() > limits.max_bytes)
-    throw JsonInputError(JsonInputError::Kind::too_large, source,
-                         std::to_string(text.size()) + " bytes of JSON, more than the limit of " +
-                             std::to_string(limits.max_bytes));
+    throw JsonInputError(
+        JsonInputError::Kind::too_large, source,
+        std::to_string(text.size()) + " bytes of JSON, more than the limit of " + std::to_string(limits.max_bytes));
   nlohmann::json out;
   BoundedDom dom(out, limits.max_depth);
   const bool ok = nlohmann::json::sax_parse(text, &dom, nlohmann::json::input_format_t::json, true);

@@ -1,9 +1,9 @@
 #include "common/store/hdf5_io.hpp"
 
 #include <array>
-#include <string_view>
 #include <cerrno>
 #include <cstring>
+#include <string_view>
 #include <sys/stat.h>
 
 namespace fnet::h5 {

@@ -73,8 +73,7 @@ TEST(ConnectionLimits, NumbersPastADoubleAndDeepNestingGetErrorsAndTheConnection
   auto m = c.next(5s);
   ASSERT_TRUE(m) << "no answer: the server died";
   EXPECT_EQ((*m)["error"]["code"], kParseError);
-  EXPECT_NE((*m)["error"]["message"].get<std::string>().find("1e999"), std::string::npos)
-      << m->dump();
+  EXPECT_NE((*m)["error"]["message"].get<std::string>().find("1e999"), std::string::npos) << m->dump();
   c.send(R"({"jsonrpc":"2.0","id":1,"method":"echo","params":{"x":-1e400}})");
   m = c.next(5s);
   ASSERT_TRUE(m);
