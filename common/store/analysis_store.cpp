@@ -477,11 +477,6 @@ StoredRun read_store(const std::filesystem::path& path) {
     const std::uint64_t* off = &offsets[k * kPointOffsets];
     const bool stored = !v1 && has_network[k] != 0;
     const std::uint64_t* net = stored ? &network_offsets[k * kNetworkOffsets] : nullptr;
-    // Offsets that decrease are damage, not a writer stopped short: the store is refused.
-    if (!std::is_sorted(off, off + kPointOffsets) || (net && (net[0] > net[1] || net[2] > net[3])))
-      throw h5::Error(file + ": frame " + std::to_string(frame[k]) + ": offsets " + offsets_text(off, kPointOffsets) +
-                      (net ? ", network offsets " + offsets_text(net, kNetworkOffsets) : std::string()) +
-                      " bound no rows");
     if (off[kPointOffsets - 1] > points.size() / 2) break;                // its points never reached the file
     if (net && (net[1] > particle_rows || net[3] > contact_rows)) break;  // its network never reached the file
     const StoredFrameRow row{frame[k],

@@ -298,7 +298,7 @@ TEST(StoreFault, SigtermEndsWithinTheStopTimeoutWithAHeavyFrameInAnalysis) {
   const fs::path run_dir = lammps_run(tmp.path() / "csv", {0});
   heavy_frame(run_dir, 1);
   ServerProcess server = e2e::start_server(tmp.path() / "data", kStopDomain, tmp.path() / "server.log",
-                                           {"--threads", "1", "--stop-timeout", "2"});
+                                           {"--threads", "1", "--stop-timeout", "2", "--max-contacts-per-grain", "0"});
   auto pub = publish(run_dir, "heavy", kStopDomain, tmp.path() / "publish.log", 0, 60);
   const json busy = fault_wait_until(
       server.port, "heavy", [](const json& r) { return r["frames"] == 1 && r["pending"] == 1; }, 120s);
