@@ -27,6 +27,13 @@ void RunStore::write_queued() {
 
 bool RunStore::retry() {
   std::lock_guard io(io_mutex_);
+  // Continuing the store copies it: on a disk without room for the copy an attempt would fail
+  // again (and each failed HDF5 file leaves some of HDF5's memory behind), so it waits for room.
+  std::error_code no_size, no_space;
+  const auto size = std::filesystem::file_size(path_, no_size);
+  const auto space = std::filesystem::space(path_.parent_path(), no_space);
+  constexpr std::uintmax_t kMargin = 1 << 20;
+  if (!no_space && space.available < (no_size ? 0 : size) + kMargin) return false;
   write_queued_locked(true);
   return fault().empty();
 }
