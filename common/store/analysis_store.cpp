@@ -423,20 +423,19 @@ StoredRun read_store(const std::filesystem::path& path) {
   StoredRun out;
   out.schema = schema;
   out.provenance = read_provenance(root.get(), file);
-  out.info.run_id = h5::read_string(root.get(), "run_id", file);
-  if (const std::string wrong = run_id_problem(out.info.run_id); !wrong.empty()) throw h5::Error(file + ": " + wrong);
+  const std::string run_id = h5::read_string(root.get(), "run_id", file);
+  if (const std::string wrong = run_id_problem(run_id); !wrong.empty()) throw h5::Error(file + ": " + wrong);
+  out.info.run_id = run_id;
   const auto announcements = read_strings(f.get(), "announcements", kInfoBytes, file);
   if (!announcements.empty()) {
     try {
       out.info = run_info_from_json(parse_bounded_json(announcements.back(), kAnnouncementJsonLimits, "JSON"));
-      out.has_info = true;
-      if (out.info.run_id != h5::read_string(root.get(), "run_id", file))
-        throw h5::Error(file + ": its announcement names run '" + out.info.run_id + "', its attribute run_id another");
-    } catch (const nlohmann::json::exception& e) {
-      throw h5::Error(file + ": unreadable run announcement: " + e.what());
-    } catch (const JsonInputError& e) {
+    } catch (const std::exception& e) {  // JsonInputError, or nlohmann's for a field missing or mistyped
       throw h5::Error(file + ": unreadable run announcement: " + e.what());
     }
+    out.has_info = true;
+    if (out.info.run_id != run_id)
+      throw h5::Error(file + ": its announcement names run '" + out.info.run_id + "', its attribute run_id another");
   }
   const hid_t g = f.get();
   const auto announced_at = optional_times(g, "announced_at", announcements.size(), file);

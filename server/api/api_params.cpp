@@ -175,10 +175,9 @@ json describe(const StepQuery& q) { return describe(q.metric, q.dim, q.force, q.
   throw Error(rpc::kUnknownRun, "unknown run '" + run + "'", {{"run", run}});
 }
 
-// A name no run can have is said so before it is compared with any (and never echoed whole).
+// A name no run can have is said so before it is compared with any (a long one is not echoed).
 [[noreturn]] void unknown_run(const Registry& registry, const std::string& run) {
-  if (const std::string problem = run_id_problem(run.size() > 80 ? run.substr(0, 80) + "..." : run); !problem.empty())
-    invalid("run", "parameter 'run': " + problem);
+  if (const std::string problem = run_id_problem(run); !problem.empty()) invalid("run", "parameter 'run': " + problem);
   std::vector<std::string> names;
   for (const RunSummary& s : registry.runs()) names.push_back(s.run_id);
   const std::vector<std::string> close = close_names(names, run);

@@ -21,16 +21,9 @@ namespace {
 
 constexpr std::size_t kMaxMib = std::size_t{1} << 20;  // MiB counts stay far from overflowing in bytes
 
-}  // namespace
-
-namespace {
-
-// A limit in seconds, set through its option.
+// A limit in seconds, set through its option (checked with the others after parsing).
 po::typed_value<double>* seconds(rpc::Seconds& limit) {
-  return po::value<double>()->default_value(limit.count())->notifier([&limit](double s) {
-    if (!(s > 0)) throw po::error("a timeout must be a positive number of seconds");
-    limit = rpc::Seconds(s);
-  });
+  return po::value<double>()->default_value(limit.count())->notifier([&limit](double s) { limit = rpc::Seconds(s); });
 }
 
 // What one client may make the server hold (proto/api.md, Limits).
@@ -130,9 +123,13 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
     if (o.max_in_flight_mib > kMaxMib || o.max_frame_mib > kMaxMib)
       throw po::error("--max-in-flight-mib and --max-frame-mib must be at most " + std::to_string(kMaxMib) +
                       " (1 TiB)");
+    const rpc::ServerLimits& l = o.limits;
     for (const auto& [flag, seconds] :
          {std::pair{"--store-retry", o.store_retry}, std::pair{"--store-idle", o.store_idle},
-          std::pair{"--stop-timeout", o.stop_timeout}})
+          std::pair{"--stop-timeout", o.stop_timeout},
+          std::pair{"--first-request-timeout", l.first_request_timeout.count()},
+          std::pair{"--request-timeout", l.request_timeout.count()},
+          std::pair{"--idle-timeout", l.idle_timeout.count()}, std::pair{"--write-timeout", l.write_timeout.count()}})
       if (!(seconds > 0 && seconds <= 1e6))
         throw po::error(std::string(flag) + " must be a number of seconds above 0 and at most 1e6");
     boost::system::error_code bad_address;

@@ -13,19 +13,11 @@
 
 #include "common/codec/diagram_json.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
+#include "tests/support/diagram_match.hpp"
 
 namespace {
 
 constexpr const char* kSource = "doc.json";
-
-bool same_bits(const fnet::Diagram& a, const fnet::Diagram& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (std::bit_cast<std::uint64_t>(a[k].birth) != std::bit_cast<std::uint64_t>(b[k].birth) ||
-        std::bit_cast<std::uint64_t>(a[k].death) != std::bit_cast<std::uint64_t>(b[k].death))
-      return false;
-  return true;
-}
 
 }  // namespace
 
@@ -46,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const fnet::JsonInputError&) {
     } catch (const std::invalid_argument&) {
     }
-    if (read.has_value() != dom.has_value() || (read && !same_bits(*read, *dom))) {
+    if (read.has_value() != dom.has_value() || (read && !fnet::testing::bit_identical(*read, *dom))) {
       std::cerr << "fuzz: the one-pass reader and the DOM disagree on " << fnet::diagram_key(dim) << "\n";
       std::abort();
     }

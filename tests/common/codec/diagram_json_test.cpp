@@ -15,6 +15,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/diagram_match.hpp"
+
 namespace fnet {
 namespace {
 
@@ -31,16 +33,6 @@ std::string error_of(Read read) {
     return e.what();
   }
   return "<accepted>";
-}
-
-// Bit for bit, so that -0.0 and 0.0 differ.
-bool identical(const Diagram& a, const Diagram& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (std::bit_cast<std::uint64_t>(a[k].birth) != std::bit_cast<std::uint64_t>(b[k].birth) ||
-        std::bit_cast<std::uint64_t>(a[k].death) != std::bit_cast<std::uint64_t>(b[k].death))
-      return false;
-  return true;
 }
 
 // Points with doubles of every kind: random bit patterns (subnormals, huge, tiny), negative zero,
@@ -108,9 +100,12 @@ TEST(DiagramJson, DocumentTextRoundTripsEveryDoubleBitForBit) {
     EXPECT_EQ(parsed, to_json(d));
     for (int dim : {0, 1}) {
       const Diagram& expected = dim == 0 ? d.pd0 : d.pd1;
-      EXPECT_TRUE(identical(document_diagram(parsed, dim), expected)) << "nlohmann reads it back, dim " << dim;
-      EXPECT_TRUE(identical(parse_document_diagram(text, dim), expected)) << "the text reader, dim " << dim;
-      EXPECT_TRUE(identical(parse_document_diagram(to_json(d).dump(), dim), expected)) << "from dump(), dim " << dim;
+      EXPECT_TRUE(fnet::testing::bit_identical(document_diagram(parsed, dim), expected))
+          << "nlohmann reads it back, dim " << dim;
+      EXPECT_TRUE(fnet::testing::bit_identical(parse_document_diagram(text, dim), expected))
+          << "the text reader, dim " << dim;
+      EXPECT_TRUE(fnet::testing::bit_identical(parse_document_diagram(to_json(d).dump(), dim), expected))
+          << "from dump(), dim " << dim;
     }
   }
   FrameDiagrams empty;
@@ -131,7 +126,7 @@ TEST(DiagramJson, TextReaderReadsAnyDocumentAsNlohmannDoes) {
            R"({"pd1": [[12345678901234567890, 1], [-0, -0.0]], "z": -1.5e-300})",
        }) {
     const Diagram expected = document_diagram(nlohmann::json::parse(text), 1);
-    EXPECT_TRUE(identical(parse_document_diagram(text, 1), expected)) << text;
+    EXPECT_TRUE(fnet::testing::bit_identical(parse_document_diagram(text, 1), expected)) << text;
   }
 }
 
