@@ -13,6 +13,7 @@
 
 #include "common/distance/infinity.hpp"
 #include "common/distance/linf_kdtree.hpp"
+#include "common/distance/work_deadline.hpp"
 
 namespace fnet {
 
@@ -294,6 +295,7 @@ class ThresholdMatcher {
       if (head == 1) limit = std::max(limit, 4 * visited);
       const std::uint32_t u = frontier_[head];
       for (std::int64_t v; (v = o.tree.take_within(s.points[u], r)) >= 0;) {
+        check_work_deadline();
         ++spent;
         if (++visited > limit && head > 0) return Local::gave_up;
         o.parent[v] = u;
@@ -355,6 +357,7 @@ class ThresholdMatcher {
       next_.clear();
       for (const std::uint32_t v : layers_[k])
         for (std::int64_t t; (t = tree->take_within(o.points[v], r)) >= 0;) {
+          check_work_deadline();
           const std::int64_t u = point_of ? (*point_of)[static_cast<std::size_t>(t)] : t;
           if (s.diagonal[u] <= r) continue;  // never needs a path, nor is on one
           const std::int64_t w = s.mate[u];
@@ -402,6 +405,7 @@ class ThresholdMatcher {
     path_s_.assign(1, root);
     path_o_.clear();
     while (!path_s_.empty()) {
+      check_work_deadline();
       const std::size_t layer = label - 1 - path_o_.size();
       const std::int64_t local = layer_trees_[layer].take_within(s.points[path_s_.back()], r);
       if (local < 0) {  // a dead end: back up

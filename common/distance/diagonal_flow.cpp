@@ -6,6 +6,7 @@
 #include "common/distance/approximate_stop.hpp"
 #include "common/distance/greedy_start.hpp"
 #include "common/distance/line_start.hpp"
+#include "common/distance/work_deadline.hpp"
 
 namespace fnet {
 
@@ -87,6 +88,7 @@ LineAlignment DiagonalFlow::align_sorted_births(bool on_line) const {
 
 void DiagonalFlow::repair_rounds(double accept_ratio) {
   for (;;) {
+    check_work_deadline_now();
     oracle_.recompute_all();
     certificate_.check_pairs(flow_, oracle_, params_.repair_top_arcs);
     if (certificate_.violations().empty()) break;  // certified on every pair

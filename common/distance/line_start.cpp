@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/distance/work_deadline.hpp"
+
 namespace fnet {
 
 namespace {
@@ -71,6 +73,7 @@ bool lower_potentials(FlowState& flow, const CandidateArcs& candidates, std::spa
     }
   };
   for (std::size_t sweep = 0; changed; ++sweep) {
+    check_work_deadline_now();
     if (sweep == params.max_sweeps) return false;
     changed = false;
     if (sweep % 2 == 0) {

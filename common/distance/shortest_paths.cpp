@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "common/distance/infinity.hpp"
+#include "common/distance/work_deadline.hpp"
 
 namespace fnet {
 
@@ -176,6 +177,7 @@ bool ShortestPaths::route(std::uint32_t source) {
   push(0.0, source);
   std::int64_t target = -1;
   while (!heap_.empty()) {
+    check_work_deadline();
     const auto [d, id] = heap_.pop();
     if (is_box_entry(id)) {
       const BoxEntry box = boxes_[static_cast<std::size_t>(id - kBoxBase)];

@@ -16,6 +16,7 @@
 #include "common/codec/distance_json.hpp"
 #include "common/codec/explain_json.hpp"
 #include "common/codec/run_info_json.hpp"
+#include "common/distance/work_deadline.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/api/api_params.hpp"
 #include "server/api/block_methods.hpp"
@@ -320,8 +321,9 @@ rpc::Handler make_api(ApiContext& ctx) {
   auto table = std::make_shared<const MethodTable>(method_table(ctx));
   const auto heavy_calls = std::make_shared<HeavyCalls>(
       [&ctx](std::function<void()> work) { ctx.offload(std::move(work)); }, ctx.max_heavy_calls_per_connection);
-  return [table, heavy_calls](const std::string& method, const json& params, const std::shared_ptr<rpc::Peer>& session,
-                              rpc::Completion done) {
+  const std::chrono::duration<double> budget = ctx.max_call_seconds;
+  return [table, heavy_calls, budget](const std::string& method, const json& params,
+                                      const std::shared_ptr<rpc::Peer>& session, rpc::Completion done) {
     const auto it = table->find(method);
     if (it == table->end()) throw Error(rpc::kMethodNotFound, "unknown method '" + method + "'");
     const Method& m = it->second;
@@ -331,15 +333,19 @@ rpc::Handler make_api(ApiContext& ctx) {
       return m.run(checked, session);
     }();
     if (json* result = std::get_if<json>(&reply)) return done(std::move(*result), nullptr);
-    heavy_calls->submit(session ? session->id() : 0,
-                        [work = std::move(std::get<Deferred>(reply).work), declared = &m.params, done, table] {
-                          try {
-                            const ReadingParams reading(*declared);
-                            done(work(), nullptr);
-                          } catch (...) {
-                            done(nullptr, std::current_exception());
-                          }
-                        });
+    heavy_calls->submit(session ? session->id() : 0, [work = std::move(std::get<Deferred>(reply).work),
+                                                      declared = &m.params, done, table, budget] {
+      try {
+        const ReadingParams reading(*declared);
+        const WorkDeadline deadline(budget);
+        done(work(), nullptr);
+      } catch (const WorkDeadlineExceeded& e) {
+        done(nullptr, std::make_exception_ptr(Error(rpc::kLimitExceeded, std::string("call stopped: ") + e.what(),
+                                                    {{"limit", "max_call_seconds"}, {"value", e.seconds()}})));
+      } catch (...) {
+        done(nullptr, std::current_exception());
+      }
+    });
   };
 }
 

@@ -23,6 +23,8 @@ struct ApiContext {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::size_t max_subscriptions_per_connection = 16;
   std::size_t max_heavy_calls_per_connection = 2;  // running at once; the next wait (heavy_calls.hpp)
+  // A heavy call's computation past it is stopped (WorkDeadline) and answered with −32008.
+  std::chrono::duration<double> max_call_seconds{60};
   std::function<std::size_t()> connections = [] { return std::size_t{0}; };
   // "running", or "stopped: <reason>" when the DDS ingest ended on an error.
   std::function<std::string()> ingest_state = [] { return std::string("not started"); };

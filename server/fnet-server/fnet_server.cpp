@@ -153,6 +153,7 @@ int main(int argc, char** argv) {
     boost::asio::io_context io;
     ApiContext context{registry};
     context.max_subscriptions_per_connection = o.max_subscriptions;
+    context.max_call_seconds = o.limits.max_call_seconds;
     context.offload = [&scheduler](std::function<void()> work) { scheduler.post(kApiQueue, std::move(work)); };
     const fnet::rpc::Handler api = make_api(context);
     const fnet::rpc::Access access{o.token};

@@ -42,7 +42,10 @@ void add_limit_options(po::options_description& options, rpc::ServerLimits& l) {
       "request-timeout", seconds(l.request_timeout), "seconds from a request's first byte to its last")(
       "idle-timeout", seconds(l.idle_timeout),
       "seconds after which a connection with nothing in progress and no subscription is closed")(
-      "write-timeout", seconds(l.write_timeout), "seconds queued output may stay unread before the client is dropped");
+      "write-timeout", seconds(l.write_timeout), "seconds queued output may stay unread before the client is dropped")(
+      "max-call-seconds", seconds(l.max_call_seconds),
+      "seconds of computation one heavy call (distance.get, blocks.get, network.get) may take; past it the call "
+      "is stopped and answered with an error");
 }
 
 }  // namespace
@@ -129,7 +132,8 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
           std::pair{"--stop-timeout", o.stop_timeout},
           std::pair{"--first-request-timeout", l.first_request_timeout.count()},
           std::pair{"--request-timeout", l.request_timeout.count()},
-          std::pair{"--idle-timeout", l.idle_timeout.count()}, std::pair{"--write-timeout", l.write_timeout.count()}})
+          std::pair{"--idle-timeout", l.idle_timeout.count()}, std::pair{"--write-timeout", l.write_timeout.count()},
+          std::pair{"--max-call-seconds", l.max_call_seconds.count()}})
       if (!(seconds > 0 && seconds <= 1e6))
         throw po::error(std::string(flag) + " must be a number of seconds above 0 and at most 1e6");
     boost::system::error_code bad_address;

@@ -23,6 +23,7 @@ struct ServerLimits {
   Seconds request_timeout{30};                  // from a message's first byte to its last
   Seconds idle_timeout{600};                    // nothing in progress, no subscription, nothing received
   Seconds write_timeout{60};                    // queued output that does not move
+  Seconds max_call_seconds{60};                 // a heavy call's computation, stopped past it (server/api)
 };
 
 }  // namespace fnet::rpc

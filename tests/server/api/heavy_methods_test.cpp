@@ -2,10 +2,12 @@
 // a series that is not stored) or read a network back from the store (network.get) hand their
 // work to ApiContext::offload, fnet-server's analysis pool, and end their call from there; the
 // others answer at once on the transport's thread.
+#include <chrono>
 #include <exception>
 #include <functional>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <boost/asio/thread_pool.hpp>
@@ -13,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "server/api/api_methods.hpp"
+#include "tests/support/synthetic_frame.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet::server {
@@ -111,6 +114,51 @@ TEST(HeavyMethods, DistancesBlocksCurvesAndComputedSeriesRunOffloadedTheRestAtOn
   const Ended bad = call(api, handler, "distance.get", {{"frame", 1}, {"other_frame", 0}, {"dimension", 1}});
   EXPECT_EQ(offloaded, 0u);
   EXPECT_EQ(error_code(bad), rpc::kInvalidParams);
+}
+
+// Two consecutive frames of 3 000 disks, analyzed by the registry: their distances take thousands
+// of the solvers' steps.
+void add_two_frames(Registry& registry) {
+  Frame frame = testing::synthetic_frame(testing::disordered_packing(2, 3000, 7));
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    RunFrame f;
+    f.header = {"big", k, 100ull * k, 1.0 * k, 0.84, 4.0};
+    f.frame = frame;
+    f.frame.label = frame_label("big", k);
+    registry.on_frame(std::move(f));
+    frame = testing::next_frame(frame, {.seed = k + 1});
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto s = registry.run("big");
+    if (s && s->frames == 2 && s->pending == 0) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  FAIL() << "frames not analyzed";
+}
+
+TEST(HeavyMethods, AHeavyCallPastItsBudgetIsStoppedWithTheLimitNamedAndTheNextCallIsServed) {
+  Api api;
+  add_two_frames(api.registry);
+  const json w2 = {{"run", "big"}, {"frame", 1}, {"other_frame", 0}, {"metric", "wasserstein"}, {"q", 2}};
+  api.context.max_call_seconds = std::chrono::duration<double>(1e-6);
+  const rpc::Handler bounded = make_api(api.context);
+  const Ended stopped = call(api, bounded, "distance.get", w2);
+  ASSERT_TRUE(stopped.called);
+  try {
+    std::rethrow_exception(stopped.error);
+  } catch (const rpc::Error& e) {
+    EXPECT_EQ(e.code(), rpc::kLimitExceeded);
+    EXPECT_EQ(e.data().value("limit", ""), "max_call_seconds") << e.data().dump();
+    EXPECT_EQ(e.data().value("value", -1.0), 1e-6) << e.data().dump();
+  } catch (...) {
+    ADD_FAILURE() << "distance.get past its budget did not end with error -32008";
+  }
+  api.context.max_call_seconds = std::chrono::duration<double>(600);
+  const Ended served = call(api, make_api(api.context), "distance.get", w2);
+  ASSERT_TRUE(served.called);
+  ASSERT_FALSE(served.error);
+  EXPECT_GT(served.result.value("value", 0.0), 0.0) << served.result.dump();
 }
 
 }  // namespace
