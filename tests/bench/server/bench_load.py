@@ -9,8 +9,11 @@ fnet-simd records one compression of PARTICLES disks (--no-dds, CSV export); RUN
 fnet-server. Meanwhile CLIENTS connections are open: SUBSCRIBERS of them subscribe (half to one
 run, half to every run) and read every point; the others loop over runs.list, run.get, series.get,
 diagram.get, distance.get and server.status until the runs end. Printed: per method, calls, p50,
-p99 and max round trip (ms) and errors; the server's peak RSS; whether every subscriber got every
-frame of its runs once, in order. --check: exit 1 unless every subscriber did and no call failed.
+p99 and max round trip (ms) and errors, as those clients measured them (one asyncio loop holding
+every connection: its own backlog counts in its round trips), and as one more client in a process
+of its own measured them (the probe: the cheap methods in turn, one at a time, every 20 ms); the
+server's peak RSS; whether every subscriber got every frame of its runs once, in order. --check:
+exit 1 unless every subscriber did and no call failed.
 """
 import argparse, asyncio, json, os, re, shutil, statistics, subprocess, sys, tempfile, time
 
@@ -26,12 +29,48 @@ p.add_argument("--particles", type=int, default=2000)
 p.add_argument("--rate", type=float, default=2)
 p.add_argument("--domain", type=int, default=217)
 p.add_argument("--check", action="store_true")
+p.add_argument("--probe-port", type=int, help=argparse.SUPPRESS)  # the probe's own process
 a = p.parse_args()
+CHEAP = ("runs.list", "run.get", "series.get", "diagram.get", "server.status")
+RUNS = [f"load-{k}" for k in range(a.runs)]
+
+
+def params_of(method, run):
+    return {"runs.list": {}, "server.status": {}, "run.get": {"run": run},
+            "series.get": {"run": run, "metric": "wasserstein2"},
+            "diagram.get": {"run": run, "frame": 0},
+            "distance.get": {"run": run, "frame": 1, "other_frame": 0, "metric": "wasserstein2"}}[method]
+
+
+def probe(port):
+    """Calls the cheap methods in turn on one blocking connection until stdin closes; prints the
+    round trips (ms) per method as one JSON line."""
+    import selectors, socket
+    latencies = {m: [] for m in CHEAP}
+    with socket.create_connection(("127.0.0.1", port)) as sock:
+        stream = sock.makefile("rwb")
+        stdin = selectors.DefaultSelector()
+        stdin.register(sys.stdin, selectors.EVENT_READ)
+        k = 0
+        while not stdin.select(timeout=0.02):
+            method = CHEAP[k % len(CHEAP)]
+            request = {"jsonrpc": "2.0", "id": k, "method": method, "params": params_of(method, RUNS[k % len(RUNS)])}
+            t = time.perf_counter()
+            stream.write((json.dumps(request) + "\n").encode())
+            stream.flush()
+            answer = json.loads(stream.readline())
+            if "result" in answer:
+                latencies[method].append(1e3 * (time.perf_counter() - t))
+            k += 1
+    print(json.dumps(latencies))
+
+
+if a.probe_port:
+    probe(a.probe_port)
+    sys.exit(0)
 
 bins = Binaries(a.build)
 work = tempfile.mkdtemp(prefix="fnet-bench-load-")
-RUNS = [f"load-{k}" for k in range(a.runs)]
-CHEAP = ("runs.list", "run.get", "series.get", "diagram.get", "server.status")
 
 
 class Connection:
@@ -99,10 +138,7 @@ async def main(port, server_pid):
         while not done.is_set():
             run = RUNS[(k + step) % len(RUNS)]
             method = (*CHEAP, "distance.get")[step % 6]
-            params = {"runs.list": {}, "server.status": {}, "run.get": {"run": run},
-                      "series.get": {"run": run, "metric": "wasserstein2"},
-                      "diagram.get": {"run": run, "frame": 0},
-                      "distance.get": {"run": run, "frame": 1, "other_frame": 0, "metric": "wasserstein2"}}[method]
+            params = params_of(method, run)
             t = time.perf_counter()
             r = await c.call(method, params)
             if "error" in r and r["error"]["code"] not in (-32001, -32002):  # runs and frames not there yet
@@ -114,6 +150,9 @@ async def main(port, server_pid):
         c.writer.close()
 
     callers = [asyncio.ensure_future(caller(k)) for k in range(a.clients - a.subscribers)]
+    prober = await asyncio.create_subprocess_exec(sys.executable, __file__, a.build, "--runs", str(a.runs),
+                                                  "--probe-port", str(port), stdin=subprocess.PIPE,
+                                                  stdout=subprocess.PIPE)
     watcher = await Connection.open(port)
     while True:
         runs = {r["run"]: r for r in (await watcher.call("runs.list"))["result"]["runs"]}
@@ -124,6 +163,7 @@ async def main(port, server_pid):
     await asyncio.sleep(2)  # the last points reach every subscriber
     done.set()
     await asyncio.gather(*callers)
+    probed = json.loads((await prober.communicate(b""))[0])
     rss = peak_rss_mb(server_pid)
 
     expected = list(range(a.frames))
@@ -135,12 +175,17 @@ async def main(port, server_pid):
     print(f"fnet-server under load: {a.clients} connections ({a.subscribers} subscribers), {a.runs} runs of "
           f"{a.frames} frames of {a.particles} disks streaming at {a.rate} frames/s each; {os.cpu_count()} cores "
           "shared with the clients and the publishers")
-    print(f"{'method':14s} {'calls':>7s} {'p50 ms':>8s} {'p99 ms':>8s} {'max ms':>8s} {'errors':>7s}")
-    for m, lat in latencies.items():
-        lat.sort()
-        if lat:
-            print(f"{m:14s} {len(lat):7d} {statistics.median(lat):8.2f} {lat[int(0.99 * (len(lat) - 1))]:8.2f} "
-                  f"{lat[-1]:8.2f} {errors[m]:7d}")
+    def table(title, latencies, errors):
+        print(title)
+        print(f"{'method':14s} {'calls':>7s} {'p50 ms':>8s} {'p99 ms':>8s} {'max ms':>8s} {'errors':>7s}")
+        for m, lat in latencies.items():
+            lat.sort()
+            if lat:
+                print(f"{m:14s} {len(lat):7d} {statistics.median(lat):8.2f} {lat[int(0.99 * (len(lat) - 1))]:8.2f} "
+                      f"{lat[-1]:8.2f} {errors.get(m, 0):7d}")
+
+    table(f"the {a.clients - a.subscribers} calling connections (one asyncio loop):", latencies, errors)
+    table("the probe (one more client, a process of its own, one call at a time):", probed, {})
     print(f"server peak RSS: {rss:.1f} MB")
     print(f"subscribers with every frame of their runs, once, in order: {complete} / {a.subscribers}")
     return complete == a.subscribers and not any(errors.values())
