@@ -1,0 +1,42 @@
+// A child process the server runs and must never outlive it nor be left behind by it: started
+// with posix_spawn (no fork of the multithreaded server), its stdout and stderr into one pipe the
+// parent reads, no other descriptor inherited; killed (SIGKILL) and reaped when its owner lets it
+// go, whatever the child is doing.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace fnet::server {
+
+class ChildProcess {
+ public:
+  // Runs `program` with `argv` (argv[0] included). Throws std::runtime_error when it cannot.
+  ChildProcess(const std::string& program, const std::vector<std::string>& argv);
+  ~ChildProcess();
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&&) = delete;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+  // The read end of the output pipe (non-blocking); -1 once the child closed its end.
+  int output() const { return output_; }
+  // Reads what the child wrote since, keeping the first `keep` bytes of its output; closes the
+  // read end at end of file.
+  void read_output(std::size_t keep);
+  const std::string& text() const { return text_; }
+  // The child's wait status once it has exited (reaped then), nullopt while it runs.
+  std::optional<int> exited();
+  // SIGKILL, then reaped.
+  void kill();
+
+ private:
+  pid_t pid_ = -1;  // -1 once reaped
+  int output_ = -1;
+  std::string text_;
+};
+
+}  // namespace fnet::server
