@@ -40,7 +40,7 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
   SpawnActions actions;
   posix_spawn_file_actions_addopen(&actions.a, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_adddup2(&actions.a, ends[1], 1);
-  posix_spawn_file_actions_adddup2(&actions.a, ends[1], 2);
+  posix_spawn_file_actions_addopen(&actions.a, 2, "/dev/null", O_WRONLY, 0);
   // The server's sockets and files stay its own (a listening socket held by a child would keep
   // the port after the server ends).
   posix_spawn_file_actions_addclosefrom_np(&actions.a, 3);

@@ -1,7 +1,7 @@
-// A child process the server runs and must never outlive it nor be left behind by it: started
-// with posix_spawn (no fork of the multithreaded server), its stdout and stderr into one pipe the
-// parent reads, no other descriptor inherited; killed (SIGKILL) and reaped when its owner lets it
-// go, whatever the child is doing.
+// A child process the server runs and never leaves behind: started with posix_spawn (no fork of
+// the multithreaded server), its stdout into a pipe the parent reads (its answer), its stdin and
+// stderr /dev/null (a sanitizer's or HDF5's own report is not an answer), no other descriptor
+// inherited; killed (SIGKILL) and reaped when its owner lets it go, whatever it is doing.
 #pragma once
 
 #include <optional>

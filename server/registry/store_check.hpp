@@ -3,7 +3,7 @@
 // does not checksum, whose objects it reads again forever), and since HDF5 runs one call at a time
 // under its own lock (a thread-safe build), a read that never returns would stall every store of
 // the server. The child reads the store whole, as the server will (read_whole_store_in_data_dir),
-// and exits 0, or non-zero with the reason on its output; one past the deadline is killed.
+// and exits 0, or non-zero with the reason on its stdout; one past the deadline is killed.
 #pragma once
 
 #include <ctime>
