@@ -1,6 +1,6 @@
-// The hidden command by which fnet-server checks a store in a process of its own before it reads
-// it (server/registry/store_check.hpp): the server runs itself again as
-// `fnet-server --check-store-for PARENT_PID FILE`.
+// The hidden command by which fnet-server checks stores in a process of its own before it reads
+// them (server/registry/store_check.hpp): the server runs itself again as
+// `fnet-server --check-store-for PARENT_PID FILE...`.
 #pragma once
 
 #include <optional>
@@ -9,11 +9,12 @@
 
 namespace fnet::server {
 
-// The command that checks a store for this process, the store's path to follow.
+// The command that checks stores for this process, their paths to follow.
 std::vector<std::string> check_store_command();
 
-// When argv is the check's command: reads FILE whole as the server would and returns 0, or prints
-// why it cannot on stdout and returns 1. nullopt for any other command line.
+// When argv is the check's command: reads each FILE whole as the server would and answers it on a
+// line of stdout (kStorePassed, or why it cannot be read), then returns 0. nullopt for any other
+// command line.
 std::optional<int> run_check_store(int argc, char** argv);
 
 }  // namespace fnet::server

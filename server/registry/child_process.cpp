@@ -26,6 +26,8 @@ struct SpawnActions {
   ~SpawnActions() { posix_spawn_file_actions_destroy(&a); }
 };
 
+constexpr std::size_t kReadAtOnce = 64 << 10;  // a child that writes on and on is read in turns
+
 std::runtime_error failure(const std::string& what, int error) {
   return std::runtime_error(what + ": " + std::strerror(error));
 }
@@ -66,26 +68,28 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept
-    : pid_(std::exchange(other.pid_, -1)), output_(std::exchange(other.output_, -1)), text_(std::move(other.text_)) {}
+    : pid_(std::exchange(other.pid_, -1)), output_(std::exchange(other.output_, -1)) {}
 
 ChildProcess::~ChildProcess() {
   kill();
   if (output_ >= 0) close(output_);
 }
 
-void ChildProcess::read_output(std::size_t keep) {
+std::string ChildProcess::read_output() {
+  std::string out;
   char buffer[4096];
-  while (output_ >= 0) {
+  while (output_ >= 0 && out.size() < kReadAtOnce) {
     const ssize_t n = read(output_, buffer, sizeof buffer);
     if (n > 0) {
-      text_.append(buffer, std::min<std::size_t>(static_cast<std::size_t>(n), keep - std::min(keep, text_.size())));
-    } else if (n == 0 || (errno != EINTR && errno != EAGAIN)) {
+      out.append(buffer, static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EAGAIN) {
+      break;
+    } else if (n == 0 || errno != EINTR) {
       close(output_);
       output_ = -1;
-    } else if (errno == EAGAIN) {
-      return;
     }
   }
+  return out;
 }
 
 std::optional<int> ChildProcess::exited() {

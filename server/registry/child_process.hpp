@@ -24,10 +24,9 @@ class ChildProcess {
   pid_t pid() const { return pid_; }
   // The read end of the output pipe (non-blocking); -1 once the child closed its end.
   int output() const { return output_; }
-  // Reads what the child wrote since, keeping the first `keep` bytes of its output; closes the
+  // What the child wrote since the last call (what the pipe holds now, up to 64 KiB); closes the
   // read end at end of file.
-  void read_output(std::size_t keep);
-  const std::string& text() const { return text_; }
+  std::string read_output();
   // The child's wait status once it has exited (reaped then), nullopt while it runs.
   std::optional<int> exited();
   // SIGKILL, then reaped.
@@ -36,7 +35,6 @@ class ChildProcess {
  private:
   pid_t pid_ = -1;  // -1 once reaped
   int output_ = -1;
-  std::string text_;
 };
 
 }  // namespace fnet::server

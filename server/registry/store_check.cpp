@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <deque>
 #include <list>
 #include <optional>
 #include <sstream>
@@ -18,7 +19,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t kOutputKept = 2048;  // of a check's output: the reason, and no more
+constexpr std::size_t kAnswerKept = 2048;  // of a check's answer: the reason, and no more
+constexpr std::size_t kBatch = 16;         // files one child checks at most
 
 std::string seconds_text(double s) {
   std::ostringstream out;
@@ -89,23 +91,55 @@ std::vector<std::string> StoreChecker::refusals(const std::vector<std::filesyste
 
 void StoreChecker::check(const std::vector<std::filesystem::path>& files, const std::vector<std::size_t>& which,
                          std::vector<std::string>& out) const {
+  // A child checks a batch of files in turn, answering each on a line of its own; each file has
+  // the whole deadline from the answer before it. A child that crashes or overruns refuses the
+  // file it was at, and the rest of its batch is checked again by another.
   struct Running {
-    std::size_t k;
+    std::vector<std::size_t> batch;  // indices of `files`, in the order given
+    std::size_t answered = 0;
     ChildProcess child;
-    Clock::time_point deadline;
+    Clock::time_point deadline;  // for batch[answered]
+    std::string line;            // the answer being read, at most kAnswerKept bytes of it
   };
   const auto allowed = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.seconds));
+  const std::size_t parallel = std::max(1u, options_.parallel);
+  std::deque<std::size_t> waiting(which.begin(), which.end());
   std::list<Running> running;
-  std::size_t next = 0;
-  while (next < which.size() || !running.empty()) {
-    while (running.size() < std::max(1u, options_.parallel) && next < which.size()) {
-      const std::size_t k = which[next++];
+  const auto take_answers = [&](Running& r, const std::string& text) {
+    for (const char c : text) {
+      if (c != '\n') {
+        if (r.line.size() < kAnswerKept) r.line += c;
+        continue;
+      }
+      if (r.answered < r.batch.size()) {
+        const std::string file = files[r.batch[r.answered++]].string();
+        const std::string said = reason(file, r.line);
+        out[r.batch[r.answered - 1]] = r.line == kStorePassed ? ""
+                                       : said.empty()         ? file + ": its check refused it without a reason"
+                                                              : said;
+      }
+      r.line.clear();
+      r.deadline = Clock::now() + allowed;
+    }
+  };
+  // The files of a child that ended or was killed: `why` for the one it was at, the rest waiting again.
+  const auto give_back = [&](Running& r, const std::string& why) {
+    if (r.answered >= r.batch.size()) return;
+    out[r.batch[r.answered]] = why;
+    waiting.insert(waiting.begin(), r.batch.begin() + static_cast<std::ptrdiff_t>(r.answered) + 1, r.batch.end());
+  };
+  while (!waiting.empty() || !running.empty()) {
+    while (running.size() < parallel && !waiting.empty()) {
+      // The files spread over the children that may run at once, a bounded batch each.
+      const std::size_t n = std::clamp<std::size_t>((waiting.size() + parallel - 1) / parallel, 1, kBatch);
+      std::vector<std::size_t> batch(waiting.begin(), waiting.begin() + static_cast<std::ptrdiff_t>(n));
+      waiting.erase(waiting.begin(), waiting.begin() + static_cast<std::ptrdiff_t>(n));
       std::vector<std::string> argv = options_.command;
-      argv.push_back(files[k].string());
+      for (const std::size_t k : batch) argv.push_back(files[k].string());
       try {
-        running.push_back({k, ChildProcess(argv.front(), argv), Clock::now() + allowed});
+        running.push_back({batch, 0, ChildProcess(argv.front(), argv), Clock::now() + allowed, {}});
       } catch (const std::exception& e) {
-        out[k] = files[k].string() + ": its check did not start: " + e.what();
+        for (const std::size_t k : batch) out[k] = files[k].string() + ": its check did not start: " + e.what();
       }
     }
     // Wait for output, an exit or the first deadline. A child that closed its output without
@@ -123,15 +157,19 @@ void StoreChecker::check(const std::vector<std::filesystem::path>& files, const 
     const auto wait = std::chrono::ceil<std::chrono::milliseconds>(wake - Clock::now()).count();
     poll(fds.data(), fds.size(), static_cast<int>(std::clamp<long long>(wait, 0, 1000)));
     for (auto r = running.begin(); r != running.end();) {
-      r->child.read_output(kOutputKept);
-      const std::string file = files[r->k].string();
+      take_answers(*r, r->child.read_output());
       if (const std::optional<int> status = r->child.exited()) {
-        r->child.read_output(kOutputKept);  // what it wrote before it exited
-        out[r->k] = refusal(file, *status, r->child.text());
+        for (std::string rest; !(rest = r->child.read_output()).empty();) take_answers(*r, rest);
+        if (r->answered < r->batch.size()) {
+          const std::string file = files[r->batch[r->answered]].string();
+          const std::string why = refusal(file, *status, r->line);
+          give_back(*r, why.empty() ? file + ": its check ended without an answer" : why);
+        }
       } else if (Clock::now() >= r->deadline) {
         r->child.kill();
-        out[r->k] = file + ": its check did not finish within " + seconds_text(options_.seconds) +
-                    " s (--store-check-seconds): HDF5 may loop forever on a damaged file";
+        give_back(*r, files[r->batch[r->answered]].string() + ": its check did not finish within " +
+                          seconds_text(options_.seconds) +
+                          " s (--store-check-seconds): HDF5 may loop forever on a damaged file");
       } else {
         ++r;
         continue;

@@ -2,8 +2,15 @@
 // only then in the server. HDF5 1.10 may never return on a damaged file (a global heap, which it
 // does not checksum, whose objects it reads again forever), and since HDF5 runs one call at a time
 // under its own lock (a thread-safe build), a read that never returns would stall every store of
-// the server. The child reads the store whole, as the server will (read_whole_store_in_data_dir),
-// and exits 0, or non-zero with the reason on its stdout; one past the deadline is killed.
+// the server. The child reads the store whole, as the server will (read_whole_store_in_data_dir);
+// one past the deadline is killed. A child checks several stores in turn (starting one costs
+// about as much as reading a store of 100 frames), each with the whole deadline.
+//
+// The check's command gets the stores' paths after its own arguments and answers each in turn on a
+// line of its stdout: kStorePassed, or why the store is refused. A child that ends or is killed
+// before it answers refuses the store it was at (with its exit status), and the stores after it
+// are checked by another.
+inline constexpr const char* kStorePassed = "ok";
 #pragma once
 
 #include <ctime>
@@ -18,9 +25,9 @@
 namespace fnet::server {
 
 struct StoreCheckOptions {
-  std::vector<std::string> command;  // the checker and its first arguments; the store's path follows
+  std::vector<std::string> command;  // the checker and its first arguments; the stores' paths follow
   double seconds = 30;               // a check still running after this is killed, its store refused
-  unsigned parallel = 2;             // checks running at once
+  unsigned parallel = 2;             // children checking at once
 };
 
 class StoreChecker {
@@ -48,7 +55,7 @@ class StoreChecker {
   };
   // The identity of a regular file (after symbolic links); nullopt for anything else.
   static std::optional<Identity> identity(const std::filesystem::path& file);
-  // The checks of `files[k]` for each k of `which`, `parallel` at a time: their refusals.
+  // The checks of `files[k]` for each k of `which`, into out[k].
   void check(const std::vector<std::filesystem::path>& files, const std::vector<std::size_t>& which,
              std::vector<std::string>& out) const;
 

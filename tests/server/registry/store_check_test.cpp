@@ -46,9 +46,9 @@ class StoreCheck : public ::testing::Test {
   testing::TempDir tmp_;
 };
 
-TEST_F(StoreCheck, AStoreWhoseCheckExitsZeroIsNotRefused) {
+TEST_F(StoreCheck, AStoreItsCheckPassesIsNotRefused) {
   const std::vector<fs::path> files{file("a.h5"), file("b.h5")};
-  EXPECT_EQ(shell_checker("exit 0").refusals(files), std::vector<std::string>(2));
+  EXPECT_EQ(shell_checker("for f; do echo ok; done").refusals(files), std::vector<std::string>(2));
 }
 
 TEST_F(StoreCheck, AFailedCheckRefusesItsStoreWithWhatItSaidNamingTheFile) {
@@ -85,20 +85,42 @@ TEST_F(StoreCheck, ChecksRunSideBySideWithinTheirBound) {
   std::vector<fs::path> files;
   for (const char* name : {"s0.h5", "s1.h5", "s2.h5", "s3.h5", "s4.h5", "s5.h5"}) files.push_back(file(name));
   const auto begin = Clock::now();
-  EXPECT_EQ(shell_checker("sleep 1", 20, 3).refusals(files), std::vector<std::string>(6));
+  EXPECT_EQ(shell_checker("for f; do sleep 1; echo ok; done", 20, 3).refusals(files), std::vector<std::string>(6));
   const auto took = Clock::now() - begin;
   EXPECT_GE(took, std::chrono::seconds(2)) << "more than 3 checks ran at once";
   EXPECT_LT(took, std::chrono::seconds(6)) << "the checks ran one at a time";
 }
 
+TEST_F(StoreCheck, AChildChecksSeveralStoresEachWithTheWholeDeadline) {
+  const std::vector<fs::path> files{file("a.h5"), file("b.h5"), file("c.h5")};
+  const auto begin = Clock::now();
+  EXPECT_EQ(shell_checker("for f; do sleep 0.6; echo ok; done", 1, 1).refusals(files), std::vector<std::string>(3));
+  EXPECT_GE(Clock::now() - begin, std::chrono::milliseconds(1800)) << "the stores were not checked in turn";
+}
+
+TEST_F(StoreCheck, AStoreThatCrashesOrStallsItsCheckIsRefusedAndTheStoresAfterItAreCheckedAgain) {
+  const fs::path a = file("a.h5"), crash = file("crash.h5"), b = file("b.h5"), slow = file("slow.h5"), c = file("c.h5");
+  const std::vector<std::string> refused =
+      shell_checker("for f; do case $f in *crash*) kill -SEGV $$;; *slow*) exec sleep 600;; esac; echo ok; done", 1, 1)
+          .refusals({a, crash, b, slow, c});
+  ASSERT_EQ(refused.size(), 5u);
+  EXPECT_EQ(refused[0], "");
+  EXPECT_EQ(refused[1].rfind(crash.string() + ": its check ended by signal " + std::to_string(SIGSEGV), 0), 0u)
+      << refused[1];
+  EXPECT_EQ(refused[2], "");
+  EXPECT_EQ(refused[3].rfind(slow.string() + ": its check did not finish within 1 s", 0), 0u) << refused[3];
+  EXPECT_EQ(refused[4], "");
+}
+
 TEST_F(StoreCheck, AnUnchangedStoreIsCheckedOnceAndAChangedOneAgain) {
   const fs::path good = file("good.h5"), bad = file("bad.h5"), runs = tmp_.path() / "runs";
-  StoreChecker checker = shell_checker("echo \"$1\" >> " + runs.string() + "; case $1 in *bad*) exit 1;; esac");
+  StoreChecker checker = shell_checker("for f; do echo \"$f\" >> " + runs.string() +
+                                       "; case $f in *bad*) echo bad;; *) echo ok;; esac; done");
   const std::vector<std::string> first = checker.refusals({good, bad});
   EXPECT_EQ(first, checker.refusals({good, bad}));
   EXPECT_EQ(lines_in(runs), 2u);
   EXPECT_TRUE(first[0].empty());
-  EXPECT_EQ(first[1], bad.string() + ": its check failed (exit code 1)");
+  EXPECT_EQ(first[1], bad.string() + ": bad");
   std::ofstream(bad, std::ios::app) << "more";
   checker.refusals({good, bad});
   EXPECT_EQ(lines_in(runs), 3u);
@@ -107,15 +129,15 @@ TEST_F(StoreCheck, AnUnchangedStoreIsCheckedOnceAndAChangedOneAgain) {
 TEST_F(StoreCheck, OnlyRegularFilesAreChecked) {
   const fs::path fifo = tmp_.path() / "pipe.h5", missing = tmp_.path() / "missing.h5", runs = tmp_.path() / "runs";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(shell_checker("echo \"$1\" >> " + runs.string() + "; exit 1").refusals({fifo, missing}),
+  EXPECT_EQ(shell_checker("for f; do echo \"$f\" >> " + runs.string() + "; echo no; done").refusals({fifo, missing}),
             std::vector<std::string>(2));
   EXPECT_FALSE(fs::exists(runs));
 }
 
 TEST_F(StoreCheck, AStoreThatChangesWhileCheckedIsRefusedUntilCheckedUnchanged) {
   const fs::path f = file("growing.h5"), grown = tmp_.path() / "grown";
-  StoreChecker checker =
-      shell_checker("if [ ! -e " + grown.string() + " ]; then echo x >> \"$1\"; touch " + grown.string() + "; fi");
+  StoreChecker checker = shell_checker("if [ ! -e " + grown.string() + " ]; then echo x >> \"$1\"; touch " +
+                                       grown.string() + "; fi; echo ok");
   EXPECT_EQ(checker.refusals({f}).front(),
             f.string() + ": it changed while it was checked (a store is read once its writer has finished)");
   EXPECT_EQ(checker.refusals({f}).front(), "");
