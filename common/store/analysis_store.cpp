@@ -539,4 +539,14 @@ StoredRun read_store_in_data_dir(const std::filesystem::path& path) {
   return run;
 }
 
+void read_whole_store_in_data_dir(const std::filesystem::path& path) {
+  const StoredRun run = read_store_in_data_dir(path);
+  if (run.schema == kStoreSchemaV1) return;  // no networks
+  const h5::File f = h5::open_for_reading(path.string());
+  for (std::size_t row = 0; row < run.frames.size(); ++row)
+    if (run.has_network[row])
+      network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, run.frames[row].header.index,
+                 run.frames[row].diagrams.normal.vertices, path.string());
+}
+
 }  // namespace fnet

@@ -85,6 +85,11 @@ StoredRun read_store(const std::filesystem::path& path);
 // read_store for a store found in a data directory, which is written again under its run's name:
 // the file must be named RUN.h5 after the run id it holds.
 StoredRun read_store_in_data_dir(const std::filesystem::path& path);
+// Reads a store found in a data directory as fnet-server serves it: read_store_in_data_dir, then
+// the force network of every committed frame that has one, as read_network reads it (the file
+// opened once). Throws as they do. What a store's check runs in a process of its own
+// (server/registry/store_check.hpp), since HDF5 itself may never return on a damaged file.
+void read_whole_store_in_data_dir(const std::filesystem::path& path);
 // The force network of committed frame `index` of a store (opened read-only in SWMR mode: not
 // for a store this process is writing, use StoreWriter::network); nullopt as StoreWriter::network.
 std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32_t index);

@@ -18,6 +18,7 @@
 
 #include "server/api/api_methods.hpp"
 #include "server/fnet-server/server_options.hpp"
+#include "server/fnet-server/store_check_command.hpp"
 #include "server/fnet-server/token_file.hpp"
 #include "server/registry/ingest.hpp"
 #include "server/registry/run_registry.hpp"
@@ -34,6 +35,7 @@ RegistryLimits registry_limits(const ServerOptions& o) {
   limits.store_retry = std::chrono::milliseconds(static_cast<long>(o.store_retry * 1000));
   limits.store_idle = std::chrono::milliseconds(static_cast<long>(o.store_idle * 1000));
   limits.max_contacts_per_grain = o.max_contacts_per_grain;
+  limits.store_check = StoreCheckOptions{check_store_command(), o.store_check_seconds, o.threads};
   return limits;
 }
 
@@ -132,6 +134,7 @@ void serve_until_signalled(boost::asio::io_context& io, fnet::rpc::Server& serve
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (const std::optional<int> checked = run_check_store(argc, argv)) return *checked;
   const auto parsed = parse_server_options(argc, argv);
   if (const int* exit_code = std::get_if<int>(&parsed)) return *exit_code;
   ServerOptions o = std::get<ServerOptions>(parsed);

@@ -97,8 +97,12 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "stop-timeout", po::value(&o.stop_timeout)->default_value(o.stop_timeout),
       "seconds SIGTERM waits for the frames in analysis before it abandons them (the stores keep what was "
       "committed; publishers still running send the rest again after a restart)")(
-      "max-subscriptions", po::value(&o.max_subscriptions)->default_value(o.max_subscriptions),
-      "subscriptions per connection");
+      "store-check-seconds", po::value(&o.store_check_seconds)->default_value(o.store_check_seconds),
+      "seconds a store found in DIR (at start, or by server.rescan) has to be read whole by a process of its own "
+      "before the server reads it; a store whose check fails or takes longer is refused, with its reason (HDF5 "
+      "may loop forever on a damaged file)")("max-subscriptions",
+                                             po::value(&o.max_subscriptions)->default_value(o.max_subscriptions),
+                                             "subscriptions per connection");
   add_limit_options(options, o.limits);
   try {
     po::variables_map vm;
@@ -129,7 +133,7 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
     const rpc::ServerLimits& l = o.limits;
     for (const auto& [flag, seconds] :
          {std::pair{"--store-retry", o.store_retry}, std::pair{"--store-idle", o.store_idle},
-          std::pair{"--stop-timeout", o.stop_timeout},
+          std::pair{"--stop-timeout", o.stop_timeout}, std::pair{"--store-check-seconds", o.store_check_seconds},
           std::pair{"--first-request-timeout", l.first_request_timeout.count()},
           std::pair{"--request-timeout", l.request_timeout.count()},
           std::pair{"--idle-timeout", l.idle_timeout.count()}, std::pair{"--write-timeout", l.write_timeout.count()},

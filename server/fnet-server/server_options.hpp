@@ -28,6 +28,8 @@ struct ServerOptions {
   double store_retry = 2;   // seconds between retries of a store that cannot be written
   double store_idle = 600;  // seconds without writes after which a run's store is closed
   double stop_timeout = 5;  // seconds a stop waits for the analysis in progress
+  // Seconds a store found in the data directory has to pass its check before it is refused.
+  double store_check_seconds = 30;
 };
 
 // The options, or the exit code when the program ends here: 0 after printing --help or

@@ -12,9 +12,16 @@
 #include "server/registry/announcement_check.hpp"
 
 namespace fnet::server {
+namespace {
+
+std::shared_ptr<StoreChecker> make_checker(const RegistryLimits& limits) {
+  return limits.store_check ? std::make_shared<StoreChecker>(*limits.store_check) : nullptr;
+}
+
+}  // namespace
 
 Registry::Registry(std::filesystem::path data_dir, FairScheduler& scheduler, RegistryLimits limits)
-    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits) {
+    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits), checker_(make_checker(limits)) {
   std::filesystem::create_directories(data_dir_);
 }
 
@@ -22,7 +29,8 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
     : data_dir_(std::move(data_dir)),
       own_scheduler_(std::make_unique<FairScheduler>(pool, std::max(1u, std::thread::hardware_concurrency()))),
       scheduler_(*own_scheduler_),
-      limits_(limits) {
+      limits_(limits),
+      checker_(make_checker(limits)) {
   std::filesystem::create_directories(data_dir_);
 }
 
@@ -207,7 +215,14 @@ std::vector<std::string> Registry::load_stores(std::vector<std::string>* only_ne
     }
   }
   std::vector<std::string> problems;
-  for (const std::filesystem::path& path : paths) {
+  const std::vector<std::string> refused =
+      checker_ ? checker_->refusals(paths) : std::vector<std::string>(paths.size());
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const std::filesystem::path& path = paths[k];
+    if (!refused[k].empty()) {
+      problems.push_back(refused[k]);
+      continue;
+    }
     try {
       StoredRun stored = read_store_in_data_dir(path);
       std::lock_guard lock(mutex_);
@@ -249,7 +264,7 @@ Registry::Run& Registry::run_locked(const std::string& run_id) {
     run.info.run_id = run_id;
     run.pipeline = RunPipeline(limits_.gap_timeout, EssentialConvention::floor,
                                FrameRules{.max_contacts_per_grain = limits_.max_contacts_per_grain});
-    run.store = std::make_shared<RunStore>(store_path(data_dir_, run_id), run_id);
+    run.store = std::make_shared<RunStore>(store_path(data_dir_, run_id), run_id, checker_);
   }
   return run;
 }

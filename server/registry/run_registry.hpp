@@ -36,6 +36,7 @@
 #include "common/store/analysis_store.hpp"
 #include "server/registry/fair_scheduler.hpp"
 #include "server/registry/run_store.hpp"
+#include "server/registry/store_check.hpp"
 #include "server/registry/subscriber.hpp"
 
 namespace fnet::server {
@@ -75,6 +76,9 @@ struct RegistryLimits {
   std::chrono::milliseconds store_retry{2000};   // a store at fault is retried this often
   std::chrono::milliseconds store_idle{600000};  // a store written to no more for this long is closed
   std::size_t max_contacts_per_grain = 24;       // FrameRules; 0: no bound
+  // How the stores this registry did not write are checked before they are read (store_check.hpp);
+  // none: read unchecked.
+  std::optional<StoreCheckOptions> store_check;
 };
 
 class Registry {
@@ -89,7 +93,8 @@ class Registry {
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
 
-  // Reads every store in the data directory; returns messages about stores that could not be read.
+  // Reads every store in the data directory, each checked first (RegistryLimits::store_check);
+  // returns messages about stores that could not be read.
   std::vector<std::string> load();
 
   // Reads the stores placed in the data directory since (RUN.h5 of a run the server does not know,
@@ -231,6 +236,7 @@ class Registry {
   std::unique_ptr<FairScheduler> own_scheduler_;  // with the pool constructor only
   FairScheduler& scheduler_;
   const RegistryLimits limits_;
+  const std::shared_ptr<StoreChecker> checker_;  // null: stores read unchecked
   // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
   // runs it adopts there. Reads the files off the lock.
   std::vector<std::string> load_stores(std::vector<std::string>* only_new);

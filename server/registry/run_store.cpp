@@ -8,8 +8,8 @@
 
 namespace fnet::server {
 
-RunStore::RunStore(std::filesystem::path path, std::string run_id)
-    : path_(std::move(path)), run_id_(std::move(run_id)) {}
+RunStore::RunStore(std::filesystem::path path, std::string run_id, std::shared_ptr<StoreChecker> checker)
+    : path_(std::move(path)), run_id_(std::move(run_id)), checker_(std::move(checker)) {}
 
 void RunStore::push(Record record, StoreTime at) {
   std::lock_guard lock(queue_mutex_);
@@ -62,7 +62,12 @@ void RunStore::write_queued_locked(bool retrying) {
     }
     try {
       if (!writer_) {
+        // A file this process did not write is read by StoreWriter to be continued: checked first.
+        if (checker_ && !written_here_)
+          if (const std::string refused = checker_->refusals({path_}).front(); !refused.empty())
+            throw std::runtime_error("cannot continue the store: " + refused);
         writer_ = std::make_unique<StoreWriter>(path_, run_id_);
+        written_here_ = true;
         reopened = true;
         std::lock_guard lock(queue_mutex_);
         open_ = true;

@@ -27,6 +27,7 @@
 #include "common/analysis/analyzed_frame.hpp"
 #include "common/run/run_frame.hpp"
 #include "common/store/analysis_store.hpp"
+#include "server/registry/store_check.hpp"
 
 namespace fnet::server {
 
@@ -34,7 +35,9 @@ class RunStore {
  public:
   using Record = std::variant<RunInfo, std::shared_ptr<const AnalyzedFrame>, RejectedFrame>;
 
-  RunStore(std::filesystem::path path, std::string run_id);
+  // A file already at `path` when the store is first opened is continued only once `checker`
+  // (if any) passes it: it was not written by this process.
+  RunStore(std::filesystem::path path, std::string run_id, std::shared_ptr<StoreChecker> checker = nullptr);
   const std::string& run_id() const { return run_id_; }
 
   // Thread-safe and cheap (never waits for a write in progress); `at` is when it happened.
@@ -77,6 +80,7 @@ class RunStore {
 
   const std::filesystem::path path_;
   const std::string run_id_;
+  const std::shared_ptr<StoreChecker> checker_;
 
   mutable std::mutex queue_mutex_;  // guards queue_, written_, fault_, open_
   std::deque<Queued> queue_;        // the head is written first; popped once written
@@ -86,6 +90,7 @@ class RunStore {
 
   std::mutex io_mutex_;  // one thread at a time opens, writes, closes or reads the file
   std::unique_ptr<StoreWriter> writer_;
+  bool written_here_ = false;  // the file is this process's own: opened by a StoreWriter here
   bool sealed_ = false;
 };
 

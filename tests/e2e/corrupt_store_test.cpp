@@ -1,8 +1,8 @@
 // Corrupted and hostile files in fnet-server's data directory: each is refused alone, naming its
 // file and why, within a bounded time, while the server starts and serves the healthy runs (DDS
-// domains 227–229). The stores are real ones written by fnet-analyze store, then damaged here:
-// bits flipped in the superblock and across the file, a crafted diagram offset, a run id that is a
-// path; a FIFO named like a store.
+// domains 227–229, 220–221). The stores are real ones written by fnet-analyze store, then damaged
+// here: bits flipped in the superblock and across the file, a crafted diagram offset, a run id that
+// is a path, a global heap that HDF5 reads forever; a FIFO named like a store.
 #include <algorithm>
 #include <chrono>
 #include <string>
@@ -25,6 +25,7 @@ using client::RpcClient;
 using Clock = std::chrono::steady_clock;
 
 using testing::flip_bits;
+using testing::loop_global_heap;
 using testing::rename_run;
 using testing::set_entry;
 
@@ -46,9 +47,9 @@ class CorruptStore : public ::testing::Test {
   fs::path store_path(const std::string& run) const { return data() / (run + ".h5"); }
 
   // Starts fnet-server on the data directory; it must be answering within `bound`.
-  void start(int domain, std::chrono::seconds bound) {
+  void start(int domain, std::chrono::seconds bound, const std::vector<std::string>& flags = {"--threads", "2"}) {
     const auto begin = Clock::now();
-    ServerProcess s = start_server(data(), domain, tmp_.path() / "server.log");
+    ServerProcess s = start_server(data(), domain, tmp_.path() / "server.log", flags);
     server_ = std::move(s.process);
     port_ = s.port;
     call("runs.list");
@@ -147,6 +148,54 @@ TEST_F(CorruptStore, AFifoNamedLikeAStoreIsRefusedWithoutBlockingTheRescan) {
   EXPECT_EQ(again["adopted"], json::array({"late"}));
   naming(again["problems"], "pipe.h5");
   naming(call("server.status")["refused_stores"], "pipe.h5");
+  expect_healthy_served("good");
+  expect_healthy_served("late");
+}
+
+// What a store's check (--store-check-seconds) says of a store whose global heap HDF5 reads forever.
+const std::string kHeapLoops = "heap.h5: its check did not finish within 8 s";
+// Far longer than a healthy store's check takes, even under the sanitizers on a loaded machine.
+const std::vector<std::string> kCheckIn8s{"--threads", "2", "--store-check-seconds", "8"};
+
+TEST_F(CorruptStore, AStoreThatHDF5ReadsForeverIsRefusedAtItsCheckDeadlineAndTheServerStarts) {
+  store("good");
+  loop_global_heap(store("heap"));
+  start(220, std::chrono::seconds(25), kCheckIn8s);
+  EXPECT_EQ(listed_runs(), std::vector<std::string>{"good"});
+  expect_healthy_served("good");
+  const json refused = call("server.status")["refused_stores"];
+  EXPECT_EQ(refused.size(), 1u) << refused.dump();
+  EXPECT_NE(naming(refused, "heap.h5").find(kHeapLoops), std::string::npos);
+}
+
+TEST_F(CorruptStore, ARescanRefusesAStoreThatHDF5ReadsForeverChecksItOnceAndItsRunIsNeverReadInTheServer) {
+  store("good");
+  start(221, std::chrono::seconds(20), kCheckIn8s);
+  loop_global_heap(store("heap"));
+  store("late");
+  auto begin = Clock::now();
+  const json rescan = call("server.rescan");
+  EXPECT_LT(Clock::now() - begin, std::chrono::seconds(18));
+  EXPECT_EQ(rescan["adopted"], json::array({"late"}));
+  EXPECT_NE(naming(rescan["problems"], "heap.h5").find(kHeapLoops), std::string::npos);
+  // Unchanged, it is refused again for the same reason without a second check.
+  begin = Clock::now();
+  const json again = call("server.rescan");
+  EXPECT_LT(Clock::now() - begin, std::chrono::seconds(2));
+  EXPECT_EQ(again["problems"], rescan["problems"]);
+  EXPECT_EQ(call("server.status")["refused_stores"], rescan["problems"]);
+  // Frames of the run streamed meanwhile: its store, which the server would read to continue it,
+  // is refused as a store fault, said to the publisher; the server answers throughout.
+  const fs::path csv = lammps_run(tmp_.path() / "csv-stream", {0, 5, 10});
+  auto pub = publish(csv, "heap", 221, tmp_.path() / "publish.log", 0, 0, 30);
+  const std::optional<int> code = pub->wait(std::chrono::seconds(120));
+  ASSERT_TRUE(code.has_value());
+  const std::string err = read_file(tmp_.path() / "publish.log");
+  EXPECT_EQ(*code, 4) << err;
+  begin = Clock::now();
+  const json run = call("run.get", {{"run", "heap"}});
+  EXPECT_LT(Clock::now() - begin, std::chrono::seconds(2));
+  EXPECT_NE(run["store_fault"].get<std::string>().find(kHeapLoops), std::string::npos) << run.dump();
   expect_healthy_served("good");
   expect_healthy_served("late");
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -43,6 +45,21 @@ void set_entry(const fs::path& file, const char* name, std::size_t row, std::siz
   h5::check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), "select");
   h5::Dataspace one(H5Screate_simple(cols ? 2 : 1, count, nullptr), "one");
   h5::check(H5Dwrite(set.get(), H5T_NATIVE_UINT64, one.get(), space.get(), H5P_DEFAULT, &value), "write");
+}
+
+void loop_global_heap(const fs::path& file) {
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::size_t heap = bytes.find("GCOL");
+  if (heap == std::string::npos) throw std::runtime_error(file.string() + ": no global heap collection");
+  // The collection's header: signature, version, 3 reserved bytes, its size (8 bytes). Each object:
+  // index (2 bytes), reference count (2), 4 reserved, size (8), data.
+  constexpr std::size_t kHeader = 16, kSizeAt = 8;
+  const char zeros[8] = {};
+  f.seekp(static_cast<std::streamoff>(heap + kHeader));
+  f.write(zeros, 2);
+  f.seekp(static_cast<std::streamoff>(heap + kHeader + kSizeAt));
+  f.write(zeros, 8);
 }
 
 void rename_run(const fs::path& file, const std::string& run_id) {

@@ -1,5 +1,6 @@
 // Damage done to a real store file, as a disk, a careless edit or a hostile user would: bits
-// flipped, one entry of a dataset overwritten, the run given another id.
+// flipped, one entry of a dataset overwritten, a global heap that HDF5 reads forever, the run
+// given another id.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +17,12 @@ void flip_bits(const std::filesystem::path& file, std::size_t begin, std::size_t
 // converted to the dataset's integer type.
 void set_entry(const std::filesystem::path& file, const char* name, std::size_t row, std::size_t col, std::size_t cols,
                std::uint64_t value);
+
+// Damages the first global heap collection of the file (signature "GCOL"; variable-length strings
+// live there, the store's attributes among them, and HDF5 does not checksum it): its first object
+// gets index 0 and size 0, which HDF5 1.10's reader of the collection takes for free space of no
+// length, read again forever. Throws when the file holds no collection.
+void loop_global_heap(const std::filesystem::path& file);
 
 // Gives the store another run id, in its run_id attribute and in every announcement it holds.
 void rename_run(const std::filesystem::path& file, const std::string& run_id);
