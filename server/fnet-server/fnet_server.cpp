@@ -34,6 +34,7 @@ RegistryLimits registry_limits(const ServerOptions& o) {
   limits.store_retry = std::chrono::milliseconds(static_cast<long>(o.store_retry * 1000));
   limits.store_idle = std::chrono::milliseconds(static_cast<long>(o.store_idle * 1000));
   limits.max_contacts_per_grain = o.max_contacts_per_grain;
+  limits.cache_bytes = o.cache_mib << 20;
   return limits;
 }
 
