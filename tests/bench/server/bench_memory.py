@@ -2,7 +2,7 @@
 """fnet-server's peak memory against the number of runs it serves: for each count of runs, a
 fresh fnet-server is fed that many runs of FRAMES frames of PARTICLES disks over DDS, then asked
 for every frame's diagram (diagram.get) and every run's series (series.get); printed, its peak
-resident memory (VmHWM) for each count.
+resident memory (VmHWM) once fed and once every diagram was read, for each count.
 
 usage: bench_memory.py BUILD_DIR [--runs 10,100] [--frames 100] [--particles 2000]
                        [--batch 10] [--domain 218] [--server-arg=--cache-mib=64 ...]
@@ -56,12 +56,13 @@ def measure(work, csv, runs):
                                            r["frames"] + r["rejected"] >= a.frames for r in listed):
                 break
             time.sleep(0.2)
+        fed = peak_rss_mib(server.pid)
         for run in names:
             rpc.call("series.get", {"run": run, "metric": "bottleneck"})
             for frame in range(a.frames):
                 rpc.call("diagram.get", {"run": run, "frame": frame})
         status = rpc.call("server.status")
-        return peak_rss_mib(server.pid), sum(r["frames"] for r in listed), status
+        return fed, peak_rss_mib(server.pid), sum(r["frames"] for r in listed), status
     finally:
         server.terminate()
         server.wait()
@@ -76,10 +77,10 @@ try:
                    check=True, env=DDS_ENV)
     print(f"fnet-server peak RSS, runs of {a.frames} frames of {a.particles} disks, every diagram read back"
           + (f" ({' '.join(a.server_arg)})" if a.server_arg else ""))
-    print(f"{'runs':>5} {'frames':>7} {'peak RSS MiB':>13}  cache")
+    print(f"{'runs':>5} {'frames':>7} {'fed: peak RSS MiB':>18} {'read: peak RSS MiB':>19}  cache")
     for runs in (int(n) for n in a.runs.split(",")):
-        rss, frames, status = measure(work, csv, runs)
+        fed, read, frames, status = measure(work, csv, runs)
         cache = status.get("cache")
-        print(f"{runs:5d} {frames:7d} {rss:13.1f}  {cache if cache is not None else '-'}", flush=True)
+        print(f"{runs:5d} {frames:7d} {fed:18.1f} {read:19.1f}  {cache if cache is not None else '-'}", flush=True)
 finally:
     shutil.rmtree(work, ignore_errors=True)
