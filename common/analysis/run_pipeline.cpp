@@ -43,6 +43,17 @@ void RunPipeline::resume(const std::vector<std::uint32_t>& settled,
   last_accepted_ = std::move(last_accepted);
 }
 
+void RunPipeline::release_predecessor() {
+  if (last_accepted_) released_ = last_accepted_->header.index;
+  last_accepted_.reset();
+}
+
+void RunPipeline::restore_predecessor(std::shared_ptr<const AnalyzedFrame> frame) {
+  if (!released_ || !frame || frame->header.index != *released_) return;
+  last_accepted_ = std::move(frame);
+  released_.reset();
+}
+
 std::optional<RunPipeline::Admission> RunPipeline::arrival(std::uint32_t index, const std::string& label) {
   if (!seen_.insert(index).second) {
     ++counts_.duplicates;
@@ -114,6 +125,14 @@ std::vector<DistanceJob> RunPipeline::advance() {
        it = pending_.find(++frontier_)) {
     Slot& slot = it->second;
     if (slot.stage != Stage::analyzed) continue;  // rejected: the predecessor stays as it was
+    if (released_) {                              // not restored: its distances cannot be measured
+      slot.stage = Stage::rejected;
+      slot.reason = frame_label(slot.frame->header.run_id, frontier_) + ": the diagrams of frame " +
+                    std::to_string(*released_) + ", its predecessor, could not be read back";
+      slot.frame->network.reset();
+      pending_bytes_ -= std::exchange(slot.bytes, 0);
+      continue;
+    }
     if (last_accepted_) {
       slot.frame->previous = last_accepted_->header.index;
       // Aliasing pointers: the diagrams stay owned by their frames.
@@ -123,7 +142,11 @@ std::vector<DistanceJob> RunPipeline::advance() {
     } else {
       slot.stage = Stage::ready;
     }
-    last_accepted_ = slot.frame;
+    // The next frame's predecessor: its index and diagrams, not its network (the store keeps it).
+    auto last = std::make_shared<AnalyzedFrame>();
+    last->header = slot.frame->header;
+    last->diagrams = slot.frame->diagrams;
+    last_accepted_ = std::move(last);
   }
   settle();
   return jobs;

@@ -102,6 +102,16 @@ class RunPipeline {
   // the first admit().
   void resume(const std::vector<std::uint32_t>& settled, std::shared_ptr<const AnalyzedFrame> last_accepted);
 
+  // The last accepted frame, the next distances' predecessor, may be released: its diagrams
+  // dropped, its index kept (a finished or idle run, a run read back from its store). A caller
+  // handing back a diagram job's outcome while it is released first restores it with that frame's
+  // diagrams; a frame reaching the frontier while it is still released is rejected, its distances
+  // not measurable.
+  void release_predecessor();
+  std::optional<std::uint32_t> released_predecessor() const { return released_; }
+  // Restores the released predecessor when `frame` is it (with its diagrams); else does nothing.
+  void restore_predecessor(std::shared_ptr<const AnalyzedFrame> frame);
+
   // A frame arriving at `now`: a repeated index is a duplicate and dropped; an index whose place
   // was skipped is settled as rejected (late); a frame whose header is out of range
   // (header_problem) is refused; any other waits for its diagram job's outcome.
@@ -159,6 +169,7 @@ class RunPipeline {
   std::map<std::uint32_t, Slot> pending_;
   std::uint32_t frontier_ = 0;  // the next index to resolve: every frame before it is resolved
   std::shared_ptr<const AnalyzedFrame> last_accepted_;
+  std::optional<std::uint32_t> released_;  // the index of last_accepted_ once released (then null)
   std::deque<Settlement> settled_;
   PipelineCounts counts_;
   std::size_t pending_bytes_ = 0;

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -51,11 +52,16 @@ struct StepValue {
   std::optional<double> value;
 };
 
+// A frame with its diagrams, given its row (a frame whose diagrams' points are not held, as
+// fnet-server keeps them); empty: the frames given hold their diagrams.
+using WithDiagrams = std::function<std::shared_ptr<const AnalyzedFrame>(const AnalyzedFrame& row)>;
+
 // Frames in index order. Appends the values of frames[from...] to `out` (frames[from - 1] is
 // their predecessor), so that a caller holding the values of a run's first frames computes only
-// those committed since.
+// those committed since. A value computed from diagrams reads them through `whole`, two frames at
+// a time.
 void append_step_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const StepQuery& query,
-                        std::size_t from, std::vector<StepValue>& out);
+                        std::size_t from, std::vector<StepValue>& out, const WithDiagrams& whole = {});
 
 // The frames of `frames` (committed, in index order) that lie in `range`, and the value of each:
 // none for a frame without a predecessor; a ratio 0/0 is NaN, x/0 and an infinite distance +inf.
@@ -65,7 +71,7 @@ struct SeriesValues {
   std::vector<std::optional<double>> value;
 };
 SeriesValues series_values(std::span<const std::shared_ptr<const AnalyzedFrame>> frames, const SeriesMeasure& measure,
-                           const FrameRange& range = {});
+                           const FrameRange& range = {}, const WithDiagrams& whole = {});
 
 // The samples a curve bins: each frame with a value, at rho - shift, as samples of realization `run`.
 std::vector<CurveSample> curve_samples(std::span<const StepValue> steps, double shift = 0, std::size_t run = 0);

@@ -119,6 +119,38 @@ std::optional<Frame> network_at(hid_t file, bool v2, std::size_t row, const std:
   return f;
 }
 
+// The diagrams of row `row` of an open store, whose frame is `index`: that row's counts and
+// offsets, and the points they bound, which must lie in the file.
+FrameDiagramSet diagrams_at(hid_t file, std::size_t row, std::uint32_t index, const std::string& where) {
+  std::array<std::uint64_t, kCounts> c{};
+  std::array<std::uint64_t, kPointOffsets> off{};
+  {
+    h5::Dataset counts(H5Dopen2(file, "counts", H5P_DEFAULT), where + ": open counts");
+    h5::read_rows(counts.get(), H5T_NATIVE_UINT64, c.data(), row, 1, kCounts, where + ": counts");
+    h5::Dataset offsets(H5Dopen2(file, "offsets", H5P_DEFAULT), where + ": open offsets");
+    h5::read_rows(offsets.get(), H5T_NATIVE_UINT64, off.data(), row, 1, kPointOffsets, where + ": offsets");
+  }
+  const std::size_t points_rows = h5::row_count(file, "points", where);
+  for (std::size_t d = 0; d + 1 < kPointOffsets; ++d)
+    if (off[d + 1] < off[d] || off[d + 1] > points_rows)
+      throw h5::Error(where + ": frame " + std::to_string(index) + ": offsets " +
+                      offsets_text(off.data(), kPointOffsets) + " do not bound rows of points (" +
+                      std::to_string(points_rows) + ")");
+  std::vector<double> points(2 * (off[kPointOffsets - 1] - off[0]));
+  h5::Dataset p(H5Dopen2(file, "points", H5P_DEFAULT), where + ": open points");
+  h5::read_rows(p.get(), H5T_NATIVE_DOUBLE, points.data(), off[0], points.size() / 2, 2, where + ": points");
+  FrameDiagramSet out;
+  const std::array<Diagram*, 4> diagrams{&out.normal.pd0, &out.normal.pd1, &out.tangential.pd0, &out.tangential.pd1};
+  for (std::size_t d = 0; d < 4; ++d) {
+    diagrams[d]->reserve(off[d + 1] - off[d]);
+    for (std::uint64_t k = off[d] - off[0]; k < off[d + 1] - off[0]; ++k)
+      diagrams[d]->push_back({points[2 * k], points[2 * k + 1]});
+  }
+  out.normal.vertices = c[0], out.normal.edges = c[1], out.normal.triangles = c[2];
+  out.tangential.vertices = c[3], out.tangential.edges = c[4], out.tangential.triangles = c[5];
+  return out;
+}
+
 }  // namespace
 
 StoreTime store_time_now() {
@@ -315,6 +347,13 @@ std::optional<Frame> StoreWriter::network(std::uint32_t index) const {
   std::array<std::uint64_t, kCounts> c{};
   h5::read_rows(counts.get(), H5T_NATIVE_UINT64, c.data(), row, 1, kCounts, "store of run " + run_id_);
   return network_at(file_.get(), false, row, run_id_, index, c[0], "store of run " + run_id_);
+}
+
+FrameDiagramSet StoreWriter::diagrams(std::uint32_t index) const {
+  const auto it = std::lower_bound(frames_.begin(), frames_.end(), index);
+  if (it == frames_.end() || *it != index)
+    throw h5::Error("store of run " + run_id_ + " has no committed frame " + std::to_string(index));
+  return diagrams_at(file_.get(), static_cast<std::size_t>(it - frames_.begin()), index, "store of run " + run_id_);
 }
 
 void StoreWriter::append(const RejectedFrame& r, StoreTime at) {
@@ -527,6 +566,18 @@ std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32
   const h5::File f = h5::open_for_reading(path.string());
   return network_at(f.get(), run.schema == kStoreSchemaV2, row, run.info.run_id, index, it->diagrams.normal.vertices,
                     path.string());
+}
+
+FrameDiagramSet read_diagrams(const std::filesystem::path& path, std::uint32_t index) {
+  h5::quiet();
+  const std::string where = path.string();
+  const h5::File f = h5::open_for_reading(where);
+  // The frame column is written last: its rows are the committed frames, in ascending order.
+  const auto frames = h5::read_uint32s(f.get(), "frame", 0, where);
+  const auto it = std::lower_bound(frames.begin(), frames.end(), index);
+  if (it == frames.end() || *it != index)
+    throw h5::Error(where + ": the store has no committed frame " + std::to_string(index));
+  return diagrams_at(f.get(), static_cast<std::size_t>(it - frames.begin()), index, where);
 }
 
 StoredRun read_store_in_data_dir(const std::filesystem::path& path) {

@@ -63,6 +63,9 @@ class StoreWriter {
   // was committed without one (copied from a fnet-store-1 store). Throws h5::Error for a frame the
   // store does not hold.
   std::optional<Frame> network(std::uint32_t index) const;
+  // The diagrams (points and counts) of committed frame `index`, read back from the file. Throws
+  // h5::Error for a frame the store does not hold.
+  FrameDiagramSet diagrams(std::uint32_t index) const;
   // Whether the file holds frame `index` committed, or its rejection.
   bool holds_frame(std::uint32_t index) const;
   bool holds_rejection(std::uint32_t index) const;
@@ -93,6 +96,10 @@ void read_whole_store_in_data_dir(const std::filesystem::path& path);
 // The force network of committed frame `index` of a store (opened read-only in SWMR mode: not
 // for a store this process is writing, use StoreWriter::network); nullopt as StoreWriter::network.
 std::optional<Frame> read_network(const std::filesystem::path& path, std::uint32_t index);
+// The diagrams of committed frame `index` of a store, read alone (its frame column, then that
+// frame's rows of counts, offsets and points), opened as read_network opens it. Throws h5::Error
+// for a frame the store does not hold or whose rows break the schema's rules.
+FrameDiagramSet read_diagrams(const std::filesystem::path& path, std::uint32_t index);
 
 // Where a run's store lives in a data directory (run ids are restricted to [A-Za-z0-9._-]).
 std::filesystem::path store_path(const std::filesystem::path& data_dir, const std::string& run_id);

@@ -169,6 +169,7 @@ json server_status(const ApiContext& ctx) {
       faults.push_back({{"run", s.run_id}, {"reason", s.store_fault}, {"unstored", s.unstored}});
   }
   const BuildInfo b = build_info();
+  const FrameCacheStats cache = r.cache_stats();
   return {{"uptime_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - ctx.started).count()},
           {"build",
            {{"version", b.version},
@@ -179,6 +180,12 @@ json server_status(const ApiContext& ctx) {
           {"ingest", ctx.ingest_state()},
           {"runs", runs},
           {"stores", {{"open", r.stores_open()}, {"faults", faults}}},
+          {"cache",
+           {{"capacity_bytes", cache.capacity_bytes},
+            {"bytes", cache.bytes},
+            {"entries", cache.entries},
+            {"hits", cache.hits},
+            {"misses", cache.misses}}},
           {"frames_per_second", r.frames_per_second()},
           {"lag", {{"frames_in_flight", r.in_flight()}, {"oldest_pending_seconds", r.oldest_pending_seconds()}}},
           {"frames",

@@ -8,6 +8,10 @@ std::shared_ptr<const AnalyzedFrame> RegistryFrames::frame(const std::string& ru
   return registry_.frame(run, index);
 }
 
+std::shared_ptr<const AnalyzedFrame> RegistryFrames::row(const std::string& run, std::uint32_t index) const {
+  return registry_.row(run, index);
+}
+
 std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> RegistryFrames::frames(const std::string& run) const {
   return registry_.frames(run);
 }

@@ -36,6 +36,7 @@ RegistryLimits registry_limits(const ServerOptions& o) {
   limits.store_idle = std::chrono::milliseconds(static_cast<long>(o.store_idle * 1000));
   limits.max_contacts_per_grain = o.max_contacts_per_grain;
   limits.store_check = StoreCheckOptions{check_store_command(), o.store_check_seconds, o.threads};
+  limits.cache_bytes = o.cache_mib << 20;
   return limits;
 }
 

@@ -83,6 +83,10 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
       "max-frame-mib", po::value(&o.max_frame_mib)->default_value(o.max_frame_mib),
       "largest frame analyzed, in MiB (32 bytes per grain and per contact: 64 MiB is a million of each); a larger "
       "frame is rejected unread, with its reason")(
+      "cache-mib", po::value(&o.cache_mib)->default_value(o.cache_mib),
+      "MiB of diagrams and force networks read back from the run stores, kept for the next request, least "
+      "recently used dropped first, shared by every run; memory holds each committed frame's row only (0: no "
+      "cache, every request reads the store)")(
       "max-contacts-per-grain", po::value(&o.max_contacts_per_grain)->default_value(o.max_contacts_per_grain),
       "a frame whose grains, taken one at a time, each touch more than this many grains not yet taken (its contact "
       "graph's degeneracy) is rejected unanalyzed; grains that do not overlap reach 5 (disks) or 12 (spheres) "
@@ -127,9 +131,9 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
     }
     if (o.threads == 0 || o.max_in_flight == 0 || o.max_in_flight_mib == 0 || o.max_frame_mib == 0)
       throw po::error("--threads, --max-in-flight, --max-in-flight-mib and --max-frame-mib must be positive");
-    if (o.max_in_flight_mib > kMaxMib || o.max_frame_mib > kMaxMib)
-      throw po::error("--max-in-flight-mib and --max-frame-mib must be at most " + std::to_string(kMaxMib) +
-                      " (1 TiB)");
+    if (o.max_in_flight_mib > kMaxMib || o.max_frame_mib > kMaxMib || o.cache_mib > kMaxMib)
+      throw po::error("--max-in-flight-mib, --max-frame-mib and --cache-mib must be at most " +
+                      std::to_string(kMaxMib) + " (1 TiB)");
     const rpc::ServerLimits& l = o.limits;
     for (const auto& [flag, seconds] :
          {std::pair{"--store-retry", o.store_retry}, std::pair{"--store-idle", o.store_idle},

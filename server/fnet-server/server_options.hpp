@@ -24,10 +24,11 @@ struct ServerOptions {
   // Frames: the bytes held for analysis at once, the largest frame, and contacts per grain
   // (contact_degeneracy; 0: no bound).
   std::size_t max_in_flight_mib = 256, max_frame_mib = 64, max_contacts_per_grain = 24;
-  double gap_timeout = 30;  // seconds
-  double store_retry = 2;   // seconds between retries of a store that cannot be written
-  double store_idle = 600;  // seconds without writes after which a run's store is closed
-  double stop_timeout = 5;  // seconds a stop waits for the analysis in progress
+  std::size_t cache_mib = 64;  // the bound of the diagrams and networks read back from the stores
+  double gap_timeout = 30;     // seconds
+  double store_retry = 2;      // seconds between retries of a store that cannot be written
+  double store_idle = 600;     // seconds without writes after which a run's store is closed
+  double stop_timeout = 5;     // seconds a stop waits for the analysis in progress
   // Seconds a store found in the data directory has to pass its check before it is refused.
   double store_check_seconds = 30;
 };

@@ -11,8 +11,8 @@ namespace fnet::query {
 
 BlockAnswer block_query(const FrameLookup& frames, const BlockRequest& r) {
   const auto& [metric, dim, force, essential] = r.measure;
-  if (!frames.frame(r.run, r.frame)) throw UnknownFrame(r.run, r.frame);
-  if (!frames.frame(r.run, r.other_frame)) throw UnknownFrame(r.run, r.other_frame);
+  if (!frames.row(r.run, r.frame)) throw UnknownFrame(r.run, r.frame);
+  if (!frames.row(r.run, r.other_frame)) throw UnknownFrame(r.run, r.other_frame);
   const auto start = std::chrono::steady_clock::now();
   const Frame a = frames.network(r.run, r.frame), b = frames.network(r.run, r.other_frame);
   if (a.dimension != b.dimension)

@@ -6,14 +6,14 @@
 namespace fnet::query {
 namespace {
 
-const std::vector<StepValue>& steps_of(const MemberRun& member, const StepQuery& query,
+const std::vector<StepValue>& steps_of(const FrameLookup& frames, const MemberRun& member, const StepQuery& query,
                                        std::map<std::string, std::vector<StepValue>>& cache) {
   std::vector<StepValue>& steps = cache[member.run_id];
   // Frames are committed in index order, so a run's values only ever grow at the end.
   const bool prefix = steps.size() <= member.frames.size() &&
                       (steps.empty() || member.frames[steps.size() - 1]->header.index == steps.back().index);
   if (!prefix) steps.clear();
-  append_step_values(member.frames, query, steps.size(), steps);
+  append_step_values(member.frames, query, steps.size(), steps, with_diagrams(frames, member.run_id));
   return steps;
 }
 
@@ -56,8 +56,8 @@ Curve compute_curve(const FrameLookup& frames, const CurveRequest& r, StepCache&
       const std::vector<CurveSample> s = curve_samples(steps, shift, run);
       to.insert(to.end(), s.begin(), s.end());
     };
-    add(numerator, steps_of(m, r.measure.query, cache.numerator));
-    if (r.measure.denominator) add(denominator, steps_of(m, *r.measure.denominator, cache.denominator));
+    add(numerator, steps_of(frames, m, r.measure.query, cache.numerator));
+    if (r.measure.denominator) add(denominator, steps_of(frames, m, *r.measure.denominator, cache.denominator));
   }
   c.bins = bin_curve(numerator, r.binning);
   if (r.measure.denominator) c.bins = ratio_curve(c.bins, bin_curve(denominator, r.binning));

@@ -20,6 +20,9 @@ class LoadedFrames final : public FrameLookup {
   void add(const std::string& run, std::uint32_t index, Frame network);
 
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run, std::uint32_t index) const override;
+  std::shared_ptr<const AnalyzedFrame> row(const std::string& run, std::uint32_t index) const override {
+    return frame(run, index);
+  }
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run) const override;
   Frame network(const std::string& run, std::uint32_t index) const override;
   std::vector<MemberRun> ensemble_members(const std::string& ensemble) const override;

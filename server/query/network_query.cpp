@@ -6,7 +6,7 @@
 namespace fnet::query {
 
 NetworkAnswer network_query(const FrameLookup& frames, const NetworkRequest& r) {
-  const auto f = frames.frame(r.run, r.frame);
+  const auto f = frames.row(r.run, r.frame);
   if (!f) throw UnknownFrame(r.run, r.frame);
   NetworkAnswer out;
   out.header = f->header;

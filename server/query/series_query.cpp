@@ -8,7 +8,7 @@ SeriesAnswer series_query(const FrameLookup& frames, const SeriesRequest& r) {
   auto committed = frames.frames(r.run);
   if (!committed) throw UnknownRun(r.run);
   SeriesAnswer out{std::move(*committed), {}};
-  out.values = series_values(out.frames, r.measure, r.range);
+  out.values = series_values(out.frames, r.measure, r.range, with_diagrams(frames, r.run));
   return out;
 }
 

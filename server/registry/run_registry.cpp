@@ -18,10 +18,26 @@ std::shared_ptr<StoreChecker> make_checker(const RegistryLimits& limits) {
   return limits.store_check ? std::make_shared<StoreChecker>(*limits.store_check) : nullptr;
 }
 
+// What memory keeps of a committed frame: all but its diagrams' points and its network.
+std::shared_ptr<const AnalyzedFrame> committed_row(const AnalyzedFrame& frame) {
+  auto row = std::make_shared<AnalyzedFrame>();
+  row->header = frame.header;
+  row->dimension = frame.dimension;
+  row->previous = frame.previous;
+  row->distances = frame.distances;
+  for (const ForceKind force : {ForceKind::normal, ForceKind::tangential}) {
+    const FrameDiagrams& from = frame.diagrams[force];
+    FrameDiagrams& to = force == ForceKind::normal ? row->diagrams.normal : row->diagrams.tangential;
+    to.vertices = from.vertices, to.edges = from.edges, to.triangles = from.triangles;
+  }
+  return row;
+}
+
 }  // namespace
 
 Registry::Registry(std::filesystem::path data_dir, FairScheduler& scheduler, RegistryLimits limits)
-    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits), checker_(make_checker(limits)) {
+    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits), checker_(make_checker(limits)),
+      cache_(limits.cache_bytes) {
   std::filesystem::create_directories(data_dir_);
 }
 
@@ -30,7 +46,7 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
       own_scheduler_(std::make_unique<FairScheduler>(pool, std::max(1u, std::thread::hardware_concurrency()))),
       scheduler_(*own_scheduler_),
       limits_(limits),
-      checker_(make_checker(limits)) {
+      checker_(make_checker(limits)), cache_(limits.cache_bytes) {
   std::filesystem::create_directories(data_dir_);
 }
 
@@ -232,14 +248,16 @@ std::vector<std::string> Registry::load_stores(std::vector<std::string>* only_ne
       run.last_activity = stored.last_activity();
       if (stored.has_info) run.info = stored.info;
       std::vector<std::uint32_t> settled;
-      for (AnalyzedFrame& f : stored.frames) {
-        const std::uint32_t index = f.header.index;
-        settled.push_back(index);
-        run.committed[index] = std::make_shared<const AnalyzedFrame>(std::move(f));
+      for (const AnalyzedFrame& f : stored.frames) {
+        settled.push_back(f.header.index);
+        run.committed[f.header.index] = committed_row(f);
       }
       for (const RejectedFrame& r : stored.rejected) settled.push_back(r.index);
       run.rejected = std::move(stored.rejected);
-      run.pipeline.resume(settled, run.committed.empty() ? nullptr : run.committed.rbegin()->second);
+      run.pipeline.resume(settled, stored.frames.empty()
+                                       ? nullptr
+                                       : std::make_shared<const AnalyzedFrame>(std::move(stored.frames.back())));
+      run.pipeline.release_predecessor();  // read back when the run's next frame comes
       if (only_new) only_new->push_back(run.run_id);
     } catch (const std::exception& e) {
       problems.push_back(e.what());
@@ -351,14 +369,23 @@ void Registry::on_refused(const FrameHeader& header, const std::string& reason) 
 }
 
 void Registry::post_locked(const Run& run, DiagramJob job) {
-  scheduler_.post(run_queue(run.run_id), [this, id = run.run_id, job = std::move(job)] {
-    DiagramOutcome outcome = job.run();
-    locked_then_deliver([&] {
-      Run& r = runs_.at(id);
-      post_locked(r, r.pipeline.analyzed(std::move(outcome)));
-      publish_locked(r);
-    });
-  });
+  scheduler_.post(run_queue(run.run_id),
+                  [this, id = run.run_id, job = std::move(job), released = run.pipeline.released_predecessor()] {
+                    DiagramOutcome outcome = job.run();
+                    // A released predecessor is read back (off the lock) before the outcome is handed back.
+                    std::shared_ptr<const AnalyzedFrame> predecessor;
+                    if (released && outcome.diagrams) try {
+                        predecessor = frame(id, *released);
+                      } catch (const std::exception& e) {
+                        std::cerr << "fnet-server: " << e.what() << "\n";
+                      }
+                    locked_then_deliver([&] {
+                      Run& r = runs_.at(id);
+                      r.pipeline.restore_predecessor(std::move(predecessor));
+                      post_locked(r, r.pipeline.analyzed(std::move(outcome)));
+                      publish_locked(r);
+                    });
+                  });
 }
 
 void Registry::post_locked(const Run& run, std::vector<DistanceJob> jobs) {
@@ -392,14 +419,16 @@ void Registry::publish_locked(Run& run) {
 // The store and the subscribers see index order, the pipeline's: a frame settled is written to
 // the store, and committed once written.
 void Registry::commit_locked(Run& run, std::shared_ptr<const AnalyzedFrame> frame) {
-  if (frame->network) {  // the store keeps the network; memory keeps only the diagrams
+  if (frame->network) {  // the store keeps the network
     auto kept = std::make_shared<AnalyzedFrame>(*frame);
     kept->network.reset();
     frame = std::move(kept);
   }
   ++counters_.analyzed;
   recent_commits_.push_back(Clock::now());
-  run.committed[frame->header.index] = std::move(frame);
+  const std::uint32_t index = frame->header.index;
+  run.committed[index] = committed_row(*frame);
+  cache_.keep(run.run_id, index, std::move(frame));
   for (const auto& [id, outbox] : subscriptions_)
     if (outbox->run_id.empty() || outbox->run_id == run.run_id) mark_locked(outbox);
 }
@@ -454,9 +483,11 @@ std::vector<RunStatus> Registry::tend_stores() {
         continue;
       }
       const bool finished = run.has_info && run.info.frames > 0 && run.pipeline.frontier() >= run.info.frames;
-      if (run.unstored == 0 && run.pipeline.pending() == 0 && run.store->open() &&
-          (finished || now - run.last_write >= limits_.store_idle))
-        close.push_back(run.store);
+      if (run.unstored == 0 && run.pipeline.pending() == 0 &&
+          (finished || now - run.last_write >= limits_.store_idle)) {
+        run.pipeline.release_predecessor();  // a run no longer live keeps no diagrams
+        if (run.store->open()) close.push_back(run.store);
+      }
     }
   }
   for (const auto& store : retry) store->retry();
@@ -572,12 +603,36 @@ std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> Registry::frame
   return out;
 }
 
-std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, std::uint32_t index) const {
+std::shared_ptr<const AnalyzedFrame> Registry::row(const std::string& run_id, std::uint32_t index) const {
   std::lock_guard lock(mutex_);
   const auto it = runs_.find(run_id);
   if (it == runs_.end()) return nullptr;
   const auto f = it->second.committed.find(index);
   return f == it->second.committed.end() ? nullptr : f->second;
+}
+
+std::shared_ptr<const AnalyzedFrame> Registry::frame(const std::string& run_id, std::uint32_t index) const {
+  std::shared_ptr<const AnalyzedFrame> row;
+  std::shared_ptr<RunStore> store;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = runs_.find(run_id);
+    if (it == runs_.end()) return nullptr;
+    const auto f = it->second.committed.find(index);
+    if (f == it->second.committed.end()) return nullptr;
+    row = f->second;
+    store = it->second.store;
+  }
+  if (auto cached = cache_.diagrams(run_id, index)) return cached;
+  auto full = std::make_shared<AnalyzedFrame>(*row);
+  try {
+    full->diagrams = store->diagrams(index);  // off the registry's lock
+  } catch (const std::exception& e) {
+    throw DiagramsUnavailable("run " + run_id + " frame " + std::to_string(index) +
+                              ": its diagrams cannot be read from the store: " + e.what());
+  }
+  cache_.keep(run_id, index, full);
+  return full;
 }
 
 Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
@@ -590,6 +645,7 @@ Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
       throw NetworkUnavailable(what + ": no such analyzed frame");
     store = it->second.store;
   }
+  if (const auto cached = cache_.network(run_id, index)) return *cached;
   std::optional<Frame> network;
   try {
     network = store->network(index);  // off the registry's lock
@@ -600,7 +656,9 @@ Frame Registry::network(const std::string& run_id, std::uint32_t index) const {
     throw NetworkUnavailable(what + ": the force network is not stored: the frame was analyzed before the store " +
                              "kept networks (it came from a " + kStoreSchemaV1 + " store); analyze the run again " +
                              "(fnet-analyze store) to have it");
-  return std::move(*network);
+  auto kept = std::make_shared<const Frame>(std::move(*network));
+  cache_.keep(run_id, index, kept);
+  return *kept;
 }
 
 std::string Registry::newest_run() const {

@@ -8,6 +8,13 @@
 // their own (run_store.hpp) and the subscribers are served from their outboxes (subscriber.hpp),
 // both after it is released. A restart reloads every store.
 //
+// In memory a committed frame is its row: header, predecessor, distances and the counts of its
+// networks, not its diagrams' points nor its network. Those are read back from the run's store
+// when asked for, through one cache every run shares (frame_cache.hpp), bounded in bytes
+// (RegistryLimits::cache_bytes), which also keeps each frame's diagrams as it is committed. What
+// waits for its store is held whole until written (RunStore), and each run's pipeline holds the
+// diagrams of its last accepted frame, the next distances' predecessor.
+//
 // A store that cannot be written is the run's fault (RunSummary::store_fault): what waits for it
 // stays queued, counted among the frames in flight (so the ingest's bound on them bounds its
 // memory too), and tend_stores() retries it. tend_stores() also closes the stores of finished
@@ -35,6 +42,7 @@
 #include "common/run/run_status.hpp"
 #include "common/store/analysis_store.hpp"
 #include "server/registry/fair_scheduler.hpp"
+#include "server/registry/frame_cache.hpp"
 #include "server/registry/run_store.hpp"
 #include "server/registry/store_check.hpp"
 #include "server/registry/subscriber.hpp"
@@ -66,6 +74,13 @@ class NetworkUnavailable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Why a committed frame's diagrams cannot be read back from its run's store: names the run, the
+// frame and the cause.
+class DiagramsUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct Counters {
   std::size_t received = 0, analyzed = 0, rejected = 0, duplicates = 0, late = 0, skipped = 0, malformed = 0;
 };
@@ -79,6 +94,7 @@ struct RegistryLimits {
   // How the stores this registry did not write are checked before they are read (store_check.hpp);
   // none: read unchecked.
   std::optional<StoreCheckOptions> store_check;
+  std::size_t cache_bytes = 64u << 20;           // the bound of the frames read back from the stores (FrameCache)
 };
 
 class Registry {
@@ -139,15 +155,21 @@ class Registry {
   std::optional<RunSummary> run(const std::string& run_id) const;
   bool has_run(const std::string& run_id) const;
   std::vector<RejectedFrame> rejected(const std::string& run_id) const;
-  // Committed frames of a run in index order (copies; diagrams shared).
+  // The rows of a run's committed frames in index order: without their diagrams' points (frame()
+  // has them).
   std::optional<std::vector<std::shared_ptr<const AnalyzedFrame>>> frames(const std::string& run_id) const;
+  // The row of a committed frame; null when the run has no such frame.
+  std::shared_ptr<const AnalyzedFrame> row(const std::string& run_id, std::uint32_t index) const;
+  // A committed frame with its diagrams, from the cache or else read back from the run's store
+  // (off the registry's lock); null when the run has no such frame. Throws DiagramsUnavailable.
   std::shared_ptr<const AnalyzedFrame> frame(const std::string& run_id, std::uint32_t index) const;
   std::string newest_run() const;
   // The force network of a committed frame, read back from the run's store: the committed frames
   // in memory hold their diagrams only. Throws NetworkUnavailable.
   Frame network(const std::string& run_id, std::uint32_t index) const;
+  FrameCacheStats cache_stats() const { return cache_.stats(); }
 
-  // A run and its committed frames in index order (copies of the pointers; the diagrams shared).
+  // A run and the rows of its committed frames in index order.
   struct MemberRun {
     std::string run_id;
     std::vector<std::shared_ptr<const AnalyzedFrame>> frames;
@@ -174,8 +196,8 @@ class Registry {
     std::string run_id;
     bool has_info = false;
     RunInfo info;
-    RunPipeline pipeline;  // the order and acceptance of its frames
-    std::map<std::uint32_t, std::shared_ptr<const AnalyzedFrame>> committed;
+    RunPipeline pipeline;                                                     // the order and acceptance of its frames
+    std::map<std::uint32_t, std::shared_ptr<const AnalyzedFrame>> committed;  // rows
     std::vector<RejectedFrame> rejected;
     std::optional<StoreTime> last_activity;
     StoreTime known_since = store_time_now();
@@ -237,6 +259,7 @@ class Registry {
   FairScheduler& scheduler_;
   const RegistryLimits limits_;
   const std::shared_ptr<StoreChecker> checker_;  // null: stores read unchecked
+  mutable FrameCache cache_;
   // load() and adopt_new_stores(): with only_new, skips the stores of known runs and lists the
   // runs it adopts there. Reads the files off the lock.
   std::vector<std::string> load_stores(std::vector<std::string>* only_new);

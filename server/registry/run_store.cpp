@@ -116,18 +116,28 @@ bool RunStore::close(bool seal) {
   return true;
 }
 
-std::optional<Frame> RunStore::network(std::uint32_t index) {
-  std::lock_guard io(io_mutex_);
+template <class Read>
+auto RunStore::read_locked(Read&& read) {
   write_queued_locked(false);
   const std::string why = fault();
   try {
-    // A closed store is read without reopening it for writing.
-    return writer_ ? writer_->network(index) : read_network(path_, index);
+    return read(writer_.get());
   } catch (const std::exception& e) {
     std::string message = e.what();
     if (!why.empty()) message += " (the store does not take writes: " + why + ")";
     throw std::runtime_error(message);
   }
+}
+
+std::optional<Frame> RunStore::network(std::uint32_t index) {
+  std::lock_guard io(io_mutex_);
+  // A closed store is read without reopening it for writing.
+  return read_locked([&](const StoreWriter* w) { return w ? w->network(index) : read_network(path_, index); });
+}
+
+FrameDiagramSet RunStore::diagrams(std::uint32_t index) {
+  std::lock_guard io(io_mutex_);
+  return read_locked([&](const StoreWriter* w) { return w ? w->diagrams(index) : read_diagrams(path_, index); });
 }
 
 std::string RunStore::fault() const {

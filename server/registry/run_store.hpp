@@ -62,6 +62,8 @@ class RunStore {
   // a frame committed without one. Throws std::runtime_error naming the cause: the store's
   // fault, or the frame not in it.
   std::optional<Frame> network(std::uint32_t index);
+  // The diagrams of committed frame `index`, read as network() reads it; throws as it does.
+  FrameDiagramSet diagrams(std::uint32_t index);
 
   // Why the store does not take writes; empty while it does.
   std::string fault() const;
@@ -75,6 +77,10 @@ class RunStore {
   void push(Record record, StoreTime at);
   // With io_mutex_ held: writes the queue out unless at fault (or `retrying`).
   void write_queued_locked(bool retrying);
+  // Reads with `read` from the open file, or else from the closed one (read-only), queued frames
+  // first written out; a failure names the store's fault, if any.
+  template <class Read>
+  auto read_locked(Read&& read);
   // With io_mutex_ held: whether the open file already holds the record (after a reopen).
   bool holds_locked(const Record& record) const;
 

@@ -120,7 +120,9 @@ TEST(RegistryNetwork, AStoreThatCannotBeWrittenFailsItsRunUntilARetryWritesEvery
   registry.on_frame(run_frame(1, 1));
   const auto deadline = std::chrono::steady_clock::now() + 60s;
   auto s = registry.run("nets");
-  while (!(s->pending == 0 && s->unstored == 2) && std::chrono::steady_clock::now() < deadline) {
+  // The fault is known once the write is tried, after the frames are queued for it.
+  while (!(s->pending == 0 && s->unstored == 2 && !s->store_fault.empty()) &&
+         std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(10ms);
     s = registry.run("nets");
   }
