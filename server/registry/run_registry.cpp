@@ -36,7 +36,10 @@ std::shared_ptr<const AnalyzedFrame> committed_row(const AnalyzedFrame& frame) {
 }  // namespace
 
 Registry::Registry(std::filesystem::path data_dir, FairScheduler& scheduler, RegistryLimits limits)
-    : data_dir_(std::move(data_dir)), scheduler_(scheduler), limits_(limits), checker_(make_checker(limits)),
+    : data_dir_(std::move(data_dir)),
+      scheduler_(scheduler),
+      limits_(limits),
+      checker_(make_checker(limits)),
       cache_(limits.cache_bytes) {
   std::filesystem::create_directories(data_dir_);
 }
@@ -46,7 +49,8 @@ Registry::Registry(std::filesystem::path data_dir, boost::asio::thread_pool& poo
       own_scheduler_(std::make_unique<FairScheduler>(pool, std::max(1u, std::thread::hardware_concurrency()))),
       scheduler_(*own_scheduler_),
       limits_(limits),
-      checker_(make_checker(limits)), cache_(limits.cache_bytes) {
+      checker_(make_checker(limits)),
+      cache_(limits.cache_bytes) {
   std::filesystem::create_directories(data_dir_);
 }
 

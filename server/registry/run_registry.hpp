@@ -94,7 +94,7 @@ struct RegistryLimits {
   // How the stores this registry did not write are checked before they are read (store_check.hpp);
   // none: read unchecked.
   std::optional<StoreCheckOptions> store_check;
-  std::size_t cache_bytes = 64u << 20;           // the bound of the frames read back from the stores (FrameCache)
+  std::size_t cache_bytes = 64u << 20;  // the bound of the frames read back from the stores (FrameCache)
 };
 
 class Registry {
