@@ -154,7 +154,10 @@ json ensembles_list(const Registry& registry) {
   for (RunSummary& s : registry.runs())
     if (s.has_info && !s.info.ensemble.empty()) by_ensemble[s.info.ensemble].push_back(std::move(s));
   json out = json::array();
-  for (const auto& [name, members] : by_ensemble) {
+  for (const auto& entry : by_ensemble) {
+    // Named, not bound: clang before 16 cannot capture a structured binding in a lambda.
+    const std::string& name = entry.first;
+    const std::vector<RunSummary>& members = entry.second;
     std::size_t frames = 0;
     std::vector<double> rho_j;
     std::optional<StoreTime> last;

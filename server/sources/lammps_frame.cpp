@@ -310,6 +310,9 @@ LammpsFrame lammps_frame(const DumpSnapshot& atoms, const DumpSnapshot& pairs, c
   std::size_t pushing = 0;
   for (std::size_t row = 0; row < pairs.rows(); ++row) {
     const std::uint64_t id_i = atom_id(pairs, row, ci), id_j = atom_id(pairs, row, cj);
+    // A grain's contact is with another: a row of one atom twice (a periodic image of itself, in a
+    // box too small for its cutoff) is no contact fnet can place.
+    if (id_i == id_j) fail(pairs.where(row), "atom id " + std::to_string(id_i) + " paired with itself");
     const auto [ai, gi] = position(id_i, row);
     const auto [aj, gj] = position(id_j, row);
     if (!gi && !gj) continue;

@@ -50,10 +50,14 @@ std::map<std::uint64_t, double> thermo_column(const std::filesystem::path& log, 
     }
     if (at == none) continue;
     double step = 0, value = 0;
-    if (w.size() != width || !number(w[0], step) || !number(w[at], value) || step < 0 || step != std::floor(step))
+    // A step is LAMMPS's bigint, a whole number in [0, 2^63): any other is no step (and past 2^64
+    // would not convert).
+    if (w.size() != width || !number(w[0], step) || !number(w[at], value) || !(step >= 0 && step < 0x1p63) ||
+        step != std::floor(step))
       throw std::runtime_error(log.string() + ":" + std::to_string(lines.number()) + ": a thermo row of " +
                                std::to_string(w.size()) + " values under " + std::to_string(width) +
-                               " columns, or not numbers: \"" + line.substr(0, 60) + "\"");
+                               " columns, or not numbers, or a step that is not a whole number below 2^63: \"" +
+                               line.substr(0, 60) + "\"");
     out.emplace(static_cast<std::uint64_t>(step), value);
   }
   if (!found)

@@ -4,15 +4,29 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <stdexcept>
+#include <sys/stat.h>
 
 namespace fnet::sources {
 
 void TextLines::Close::operator()(gzFile_s* file) const { gzclose(file); }
 
 namespace {
+
+// zlib's buffers (in, and twice that out) sized to what is left of the file, within [8 KiB,
+// 128 KiB]: a large dump is read in large pieces, and a small file (a log, an index) costs no
+// 384 KiB of buffers each time it is opened.
+unsigned buffer_bytes(int fd, std::uint64_t offset) {
+  constexpr std::uint64_t kMin = 8 << 10, kMax = 128 << 10;
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || st.st_size < 0) return kMax;
+  const std::uint64_t left =
+      static_cast<std::uint64_t>(st.st_size) - std::min<std::uint64_t>(offset, static_cast<std::uint64_t>(st.st_size));
+  return static_cast<unsigned>(std::clamp(left, kMin, kMax));
+}
 
 // zlib reads from the descriptor's position: the file opened and moved to `offset`, or null.
 gzFile_s* open_at(const std::filesystem::path& path, std::uint64_t offset) {
@@ -23,7 +37,11 @@ gzFile_s* open_at(const std::filesystem::path& path, std::uint64_t offset) {
     return nullptr;
   }
   gzFile_s* file = gzdopen(fd, "rb");
-  if (!file) ::close(fd);
+  if (!file) {
+    ::close(fd);
+    return nullptr;
+  }
+  gzbuffer(file, buffer_bytes(fd, offset));
   return file;
 }
 
@@ -36,7 +54,6 @@ TextLines::TextLines(const std::filesystem::path& path, const Start& start)
       offset_(start.offset),
       whole_lines_only_(start.whole_lines_only) {
   if (!file_) throw std::runtime_error(path.string() + ": cannot open");
-  gzbuffer(file_.get(), 1 << 17);
 }
 
 bool TextLines::next(std::string& line) {

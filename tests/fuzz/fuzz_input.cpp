@@ -11,12 +11,21 @@
 namespace fnet::fuzz {
 namespace {
 
+// Where scratch folders go: $TMPDIR, else /dev/shm (tmpfs: an input's files never reach a disk,
+// where ext4 flushes a file rewritten after a truncation when it is closed), else /tmp.
+std::string scratch_root() {
+  const char* tmp = std::getenv("TMPDIR");
+  if (tmp && *tmp) return tmp;
+  std::error_code ec;
+  if (std::filesystem::is_directory("/dev/shm", ec) && access("/dev/shm", W_OK) == 0) return "/dev/shm";
+  return "/tmp";
+}
+
 // Made at first use, removed when the process exits normally (a crash leaves it for the report).
 struct ScratchFolder {
   std::filesystem::path path;
   ScratchFolder() {
-    const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/fnet-fuzz-XXXXXX";
+    std::string pattern = scratch_root() + "/fnet-fuzz-XXXXXX";
     if (!mkdtemp(pattern.data())) {
       std::cerr << "fuzz: cannot create a scratch folder " << pattern << "\n";
       std::abort();

@@ -23,8 +23,8 @@ inline constexpr std::string_view kFileSeparator = "\n@@@@\n";
 // The input's files, in order; at least one (perhaps empty).
 std::vector<std::string_view> input_files(const std::uint8_t* data, std::size_t size);
 
-// A folder of this process's own under $TMPDIR (else /tmp), removed at exit: the readers under
-// test take paths.
+// A folder of this process's own under $TMPDIR (else /dev/shm, else /tmp), removed at exit: the
+// readers under test take paths.
 const std::filesystem::path& scratch_dir();
 // Writes `bytes` to scratch_dir()/name and returns that path.
 std::filesystem::path write_file(const std::string& name, std::string_view bytes);

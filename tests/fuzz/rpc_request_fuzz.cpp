@@ -5,18 +5,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <string_view>
 
-#include <boost/asio/thread_pool.hpp>
-
 #include "common/codec/bounded_json.hpp"
-#include "server/api/api_methods.hpp"
 #include "server/rpc/server_limits.hpp"
-#include "tests/fuzz/fuzz_input.hpp"
+#include "tests/fuzz/api_over_store.hpp"
 
 namespace {
 
@@ -33,27 +29,10 @@ class FuzzPeer final : public fnet::rpc::Peer {
   void subscriptions_changed(int) override {}
 };
 
-struct Api {
-  boost::asio::thread_pool pool{1};
-  std::unique_ptr<fnet::server::Registry> registry;
-  std::unique_ptr<fnet::server::ApiContext> context;
-  fnet::rpc::Handler handler;
-  Api() {
-    const std::filesystem::path data = fnet::fuzz::scratch_dir() / "data";
-    std::filesystem::create_directories(data);
-    const std::filesystem::path store = std::filesystem::path(FNET_SOURCE_DIR) / "tests/data/store-v2/legacy-v2.h5";
-    std::filesystem::copy_file(store, data / "legacy-v2.h5", std::filesystem::copy_options::overwrite_existing);
-    registry = std::make_unique<fnet::server::Registry>(data, pool);
-    registry->load();
-    context = std::make_unique<fnet::server::ApiContext>(fnet::server::ApiContext{*registry});
-    handler = fnet::server::make_api(*context);
-  }
-};
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static Api api;
+  static fnet::fuzz::ApiOverStore api;
   static const auto peer = std::make_shared<FuzzPeer>();
   const fnet::rpc::ServerLimits limits;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
