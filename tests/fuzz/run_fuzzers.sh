@@ -30,9 +30,23 @@ for t in "${targets[@]}"; do
   work="$build/fuzz-work/$t"
   rm -rf "$work"
   mkdir -p "$work/corpus"
-  if "$build/tests/fuzz/fnet_fuzz_$t" -max_total_time="$seconds" -timeout=10 -malloc_limit_mb=512 -rss_limit_mb=2048 \
-    -print_final_stats=1 -artifact_prefix="$work/" "$work/corpus" "tests/fuzz/corpus/$t" >"$work/log" 2>&1; then
+  flags=(-max_total_time="$seconds" -timeout=10 -malloc_limit_mb=512 -rss_limit_mb=2048 -print_final_stats=1
+    -artifact_prefix="$work/" "$work/corpus" "tests/fuzz/corpus/$t")
+  if [ "$t" = store ]; then
+    # HDF5 1.10.8 loops forever on some damaged global heaps (README, store; fnet-server reads such
+    # a store only in a child process under a deadline): libFuzzer runs this target in a child it
+    # restarts past a timeout, and the run fails on any crash, sanitizer report or memory bound,
+    # read from its log (its exit status at the time limit says nothing).
+    "$build/tests/fuzz/fnet_fuzz_$t" -fork=1 -ignore_timeouts=1 "${flags[@]}" >"$work/log" 2>&1 || true
+    if grep -qE "ERROR: (AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|libFuzzer: (deadly|out-of-memory|malloc))|runtime error:|oom/timeout/crash: ([1-9][0-9]*/[0-9]+/[0-9]+|[0-9]+/[0-9]+/[1-9])" "$work/log"; then
+      store_ok=false
+    else
+      store_ok=true
+    fi
+  fi
+  if { [ "$t" = store ] && $store_ok; } || { [ "$t" != store ] && "$build/tests/fuzz/fnet_fuzz_$t" "${flags[@]}" >"$work/log" 2>&1; }; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/log")
+    [ -n "$runs" ] || runs=$(grep -oE "^#[0-9]+" "$work/log" | tail -1 | tr -d '#')
     echo "fuzz $t: ${runs:-?} inputs in ${seconds} s, no finding"
   else
     echo "fuzz $t: FAILED (report: $work/log)"
