@@ -17,7 +17,7 @@ exit 1 unless every subscriber did and no call failed.
 """
 import argparse, asyncio, json, os, re, shutil, statistics, subprocess, sys, tempfile, time
 
-from fnet_service import DDS_ENV as env, Binaries
+from fnet_service import DDS_ENV as env, Binaries, record_compression
 
 p = argparse.ArgumentParser()
 p.add_argument("build")
@@ -128,7 +128,7 @@ async def main(port, server_pid):
     for k in range(a.subscribers):
         c = await Connection.open(port, recorder(k))
         params = {"run": RUNS[k % len(RUNS)]} if k % 2 == 0 else {}
-        while "error" in (r := await c.call("series.subscribe", params)):  # the run exists at its first frame
+        while "error" in await c.call("series.subscribe", params):  # the run exists at its first frame
             await asyncio.sleep(0.2)
         subscribers.append(c)
 
@@ -195,10 +195,7 @@ ok = False
 procs = []
 try:
     csv = os.path.join(work, "csv")
-    box = 50 * (a.particles / 2000) ** 0.5
-    subprocess.run([bins.simd, "--particles", str(a.particles), "--box", f"{box:.4f}", "--compression-speed", "1e-3",
-                    "--frames", str(a.frames), "--seed", "5", "--quiet", "--no-dds", "--export-csv", csv],
-                   check=True, env=env)
+    record_compression(bins, csv, a.particles, a.frames)
     server = subprocess.Popen([bins.server, "--data-dir", os.path.join(work, "data"), "--port", "0", "--domain",
                                str(a.domain), "--threads", "2", "--max-connections", str(a.clients + 16)],
                               stdout=subprocess.PIPE, stderr=open(os.path.join(work, "server.log"), "w"), env=env,

@@ -11,9 +11,9 @@ fnet-simd records one compression of PARTICLES disks (--no-dds, CSV export); `fn
 publish` replays it onto DDS under as many run ids, BATCH publishers at a time, each batch waited
 for (every frame acknowledged and stored). --server-arg passes an option to fnet-server.
 """
-import argparse, os, re, shutil, subprocess, sys, tempfile, time
+import argparse, os, re, shutil, subprocess, tempfile, time
 
-from fnet_service import DDS_ENV, Binaries, Rpc
+from fnet_service import DDS_ENV, Binaries, Rpc, record_compression
 
 p = argparse.ArgumentParser()
 p.add_argument("build")
@@ -71,10 +71,7 @@ def measure(work, csv, runs):
 work = tempfile.mkdtemp(prefix="fnet-bench-memory-")
 try:
     csv = os.path.join(work, "csv")
-    box = 50 * (a.particles / 2000) ** 0.5
-    subprocess.run([bins.simd, "--particles", str(a.particles), "--box", f"{box:.4f}", "--compression-speed", "1e-3",
-                    "--frames", str(a.frames), "--seed", "5", "--quiet", "--no-dds", "--export-csv", csv],
-                   check=True, env=DDS_ENV)
+    record_compression(bins, csv, a.particles, a.frames)
     print(f"fnet-server peak RSS, runs of {a.frames} frames of {a.particles} disks, every diagram read back"
           + (f" ({' '.join(a.server_arg)})" if a.server_arg else ""))
     print(f"{'runs':>5} {'frames':>7} {'fed: peak RSS MiB':>18} {'read: peak RSS MiB':>19}  cache")

@@ -1,5 +1,6 @@
 """What the fnet-server benchmarks share: the built binaries, the loopback DDS environment, a
-JSON-RPC client on one connection, and fnet-server started on a port it picks."""
+recorded compression, a JSON-RPC client on one connection, and fnet-server started on a port it
+picks."""
 import json, os, re, socket, subprocess
 
 SOURCE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
@@ -32,6 +33,15 @@ class Rpc:
                 if "error" in msg:
                     raise RuntimeError(msg["error"])
                 return msg["result"]
+
+
+def record_compression(binaries, csv_dir, particles, frames, speed="1e-3"):
+    """One fnet-simd compression of `particles` disks (the box scaled to keep the paper's packing
+    fraction), `frames` frames exported as a CSV run folder, no DDS."""
+    box = 50 * (particles / 2000) ** 0.5
+    subprocess.run([binaries.simd, "--particles", str(particles), "--box", f"{box:.4f}", "--compression-speed",
+                    str(speed), "--frames", str(frames), "--seed", "5", "--quiet", "--no-dds", "--export-csv",
+                    csv_dir], check=True, env=DDS_ENV)
 
 
 def start_server(binaries, data_dir, log_path, domain, threads=None):
