@@ -20,7 +20,6 @@ if [ $# -gt 0 ]; then
 else
   mapfile -t targets < <(sed -n 's/^fnet_fuzz_target(\([a-z0-9_]*\) .*/\1/p' tests/fuzz/CMakeLists.txt)
 fi
-export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0"
 # AddressSanitizer's quarantine (freed memory held back to catch a use after it is freed) at
 # 32 MiB, not 256: far more than one input frees, and memory that stays mapped and warm instead of
 # fresh pages each input (a third of the file-reading targets' time).

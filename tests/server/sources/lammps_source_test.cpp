@@ -184,6 +184,12 @@ TEST(LammpsSource, BadDumpsAreNamedByFileAndLine) {
   dir.write("cut.txt", whole.substr(0, whole.find("20 1 1")));
   EXPECT_THAT(run("cut.txt", "pairs.txt"),
               AllOf(HasSubstr((d / "cut.txt").string() + ":10:"), HasSubstr("ends after 1 of its 4 rows")));
+  // A count of rows no memory could hold (past 2^63), the rows missing: cut short, not a failed
+  // allocation.
+  std::string huge = whole;
+  huge.replace(huge.find("ATOMS\n4\n") + 6, 1, "10666666666666666666");
+  dir.write("huge.txt", huge);
+  EXPECT_THAT(run("huge.txt", "pairs.txt"), HasSubstr("ends after 4 of its 10666666666666666666 rows"));
   // A row cut short.
   dir.write("short.txt", whole.substr(0, whole.size() - 4));
   EXPECT_THAT(run("short.txt", "pairs.txt"),
