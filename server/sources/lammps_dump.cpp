@@ -17,6 +17,8 @@ namespace fnet::sources {
 
 namespace {
 
+constexpr std::uint64_t kReservedRows = 4096;  // rows of a snapshot reserved before they are read
+
 std::vector<std::string_view> words(std::string_view line) {
   std::vector<std::string_view> out;
   std::size_t k = 0;
@@ -143,9 +145,10 @@ class DumpReader {
     for (const std::string_view w : words(item_rest_)) s.columns.emplace_back(w);
     if (s.columns.empty()) fail("ITEM: " + item_ + " names no column");
     s.first_row_line = lines_.number() + 1;
-    // The count is the file's word: reserve no more than a modest snapshot's worth before the rows
-    // are there (a count past memory is then "cut short", not an allocation failure).
-    s.values.reserve(std::min<std::uint64_t>(rows, std::uint64_t{1} << 20) * s.columns.size());
+    // The count is the file's word, not what it holds: reserve no more than a few thousand rows
+    // before they are read (a count past memory is then "cut short", not an allocation failure
+    // or a large allocation per snapshot of a file of a few lines); larger snapshots grow.
+    s.values.reserve(std::min<std::uint64_t>(rows, kReservedRows) * s.columns.size());
     for (std::uint64_t r = 0; r < rows; ++r) {
       if (!lines_.next(line_))
         cut_short(within + " ends after " + std::to_string(r) + " of its " + std::to_string(rows) + " rows");
