@@ -105,6 +105,7 @@ File open_for_reading(const std::string& path) {
 PropertyList latest_format() {
   PropertyList fapl(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");
+  check(H5Pset_cache(fapl.get(), 0, kChunkCacheSlots, kChunkCacheBytes, 1.0), "H5Pset_cache");
   return fapl;
 }
 

@@ -2,6 +2,7 @@
 // an h5::Error that names the object.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,8 +14,14 @@ namespace fnet::h5 {
 // Turns off HDF5's own error-stack printing: our exceptions carry the messages.
 void quiet();
 
-// File access with the latest format, which SWMR (single writer, readers while it writes) needs.
+// File access with the latest format, which SWMR (single writer, readers while it writes) needs,
+// and a chunk cache of kChunkCacheBytes per open dataset.
 PropertyList latest_format();
+// The chunk cache of each open dataset: two of the largest chunks a store or run file has (the
+// points', 128 KiB), so that the chunk being appended to stays cached; chunks written in full are
+// evicted first. HDF5's default (1 MiB a dataset) kept some 5 MB per store being written, full
+// chunks that are never written again.
+inline constexpr std::size_t kChunkCacheBytes = 256 << 10, kChunkCacheSlots = 101;
 // How many times a SWMR reader reads a piece of metadata whose checksum fails before it gives up
 // (HDF5's default is 100, with a growing sleep between attempts: half an hour on a file damaged
 // on disk). A few attempts cover a read torn by a live writer.

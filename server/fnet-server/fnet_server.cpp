@@ -1,6 +1,7 @@
 // fnet-server: subscribes to the frames of every run on DDS, analyzes them as they arrive, keeps
 // one store per run under --data-dir and answers JSON-RPC on 127.0.0.1 (proto/api.md); with
 // --http-port, the dashboard too (server/web).
+#include <malloc.h>
 #include <unistd.h>
 
 #include <condition_variable>
@@ -60,14 +61,20 @@ std::string server_name(const std::string& data_dir) {
 }
 
 // A thread that tends the stores four times a second (Registry::tend_stores) and tells the
-// publishers each run's status that changed, until destroyed.
+// publishers each run's status that changed, until destroyed. Every kTrimTicks ticks it gives
+// the pages malloc holds free back to the system (malloc_trim): what one thread frees of what
+// another allocated (the frame cache's entries, above all) otherwise stays resident in the
+// allocating thread's arena.
 class StoreTending {
  public:
+  static constexpr unsigned kTrimTicks = 8;
   StoreTending(Registry& registry, Ingest& ingest, std::string server)
       : thread_([this, &registry, &ingest, server = std::move(server)] {
           std::unique_lock lock(mutex_);
-          while (!cv_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stop_; })) {
+          for (unsigned tick = 1; !cv_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stop_; });
+               ++tick) {
             lock.unlock();
+            if (tick % kTrimTicks == 0) malloc_trim(0);
             try {
               for (fnet::RunStatus& status : registry.tend_stores()) {
                 status.server = server;

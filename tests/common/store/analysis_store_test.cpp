@@ -1,11 +1,13 @@
 // The analysis store's record times: written with every record, kept when a writer continues the
-// store, and unknown (not invented) for a store written before they existed.
+// store, and unknown (not invented) for a store written before they existed; the chunk cache its
+// files are opened with.
 #include "common/store/analysis_store.hpp"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "common/store/hdf5_io.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace fnet {
@@ -74,6 +76,23 @@ TEST(AnalysisStore, AStoreWithoutTimesHasUnknownActivity) {
   StoreWriter w(path, "times");
   w.append(analyzed(3), 400.0);  // new records have times again
   EXPECT_EQ(read_store(path).last_activity(), 400.0);
+}
+
+// Every store and run file is opened with a chunk cache of two of its largest chunks per
+// dataset, not HDF5's 1 MiB: a server writing ten stores held some 50 MB of full chunks.
+TEST(AnalysisStore, FilesAreOpenedWithABoundedChunkCache) {
+  testing::TempDir dir;
+  const fs::path path = dir.path() / "times.h5";
+  write_run(path);
+  const h5::File file = h5::open_for_reading(path.string());
+  const h5::PropertyList fapl(H5Fget_access_plist(file.get()), "H5Fget_access_plist");
+  int elements = 0;
+  std::size_t slots = 0, bytes = 0;
+  double w0 = 0;
+  ASSERT_GE(H5Pget_cache(fapl.get(), &elements, &slots, &bytes, &w0), 0);
+  EXPECT_EQ(bytes, h5::kChunkCacheBytes);
+  EXPECT_GE(bytes, 2 * 8192 * 2 * sizeof(double));  // two chunks of the points' 8192 rows of 2 doubles
+  EXPECT_EQ(w0, 1.0);
 }
 
 }  // namespace
