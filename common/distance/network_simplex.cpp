@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -189,7 +188,6 @@ void NetworkSimplex::refresh_pool() {
       work += incidence_start_[v + 1] - incidence_start_[v];
     }
   }
-  ++refreshes_;
   if (work * 2 > arcs_.size()) return rebuild_pool();
   const auto look = [&](std::uint32_t e) {
     if (!in_pool_[e] && improving(e)) pool_.push_back(e), in_pool_[e] = 1;

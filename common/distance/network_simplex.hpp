@@ -61,6 +61,9 @@ class NetworkSimplex {
   std::size_t pivots() const { return pivots_; }
   std::size_t degenerate_pivots() const { return degenerate_; }
   std::size_t pair_arcs() const { return arcs_.size() - first_pair_arc_; }
+  // Pricing work: reduced costs looked at (pool, refreshes and full scans), full scans.
+  std::size_t reduced_costs_looked_at() const { return scanned_total_; }
+  std::size_t full_scans() const { return rebuilds_; }
   std::uint32_t node_count() const { return static_cast<std::uint32_t>(parent_.size()); }
 
   // Checks every invariant above but strong feasibility (tests): the tree spans the nodes, the
@@ -110,12 +113,7 @@ class NetworkSimplex {
   std::vector<std::uint32_t> incidence_start_, incidence_;  // per a_i, b_j: the arcs at it
   static constexpr double kBlockFactor = 0.3;
   double last_sigma_ = 0;  // the moved subtree's potential change in the last pivot
-
- public:
-  std::size_t scanned_total_ = 0, rebuilds_ = 0, refreshes_ = 0;
-  std::size_t arc_count() const { return arcs_.size(); }
-
- private:
+  std::size_t scanned_total_ = 0, rebuilds_ = 0;
   std::vector<std::uint32_t> moved_, order_, stem_, position_;  // scratch of move_subtree
 };
 

@@ -1,14 +1,11 @@
 #include "common/distance/simplex_transport.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <optional>
 
 #include "common/distance/candidate_arcs.hpp"
 #include "common/distance/line_seed.hpp"
 #include "common/distance/network_simplex.hpp"
-#include "common/distance/sorted_birth_seed.hpp"
 #include "common/distance/work_deadline.hpp"
 
 namespace fnet {
@@ -50,14 +47,7 @@ void copy_out(const NetworkSimplex& simplex, FlowState& flow) {
 }  // namespace
 
 void solve_by_simplex(FlowState& flow, PairOracle& oracle, DualCertificate& certificate, double accept_ratio,
-                      const SimplexTransportParams& given, SimplexTransportStats& stats) {
-  SimplexTransportParams params = given;
-#ifdef FNET_SIMPLEX_KNOBS
-  if (std::getenv("NS_K")) params.nearest = std::atoi(std::getenv("NS_K"));
-  if (std::getenv("NS_TOP")) params.top_arcs = std::atoi(std::getenv("NS_TOP"));
-  if (std::getenv("NS_LINE")) params.line_min_points = std::atoi(std::getenv("NS_LINE"));
-  if (std::getenv("NS_RANKS")) params.line_ranks = std::atoi(std::getenv("NS_RANKS"));
-#endif
+                      const SimplexTransportParams& params, SimplexTransportStats& stats) {
   stats = {};
   LineSeed seed;
   if (params.line_min_points > 0)
@@ -74,15 +64,19 @@ void solve_by_simplex(FlowState& flow, PairOracle& oracle, DualCertificate& cert
     for (const auto& [i, j] : arcs) simplex.add_pair_arc(i, j, flow.cost(i, j));
     graph.add(arcs);
   };
-  // Nearest neighbours as they are, and after the median scale between the two diagrams (forces
-  // are in units of their frame's mean, which moves between frames: the whole diagram stretches).
-  const double scale = quantile_scale(flow.a, flow.b);
-  for (const double s : {1.0, scale}) {
-    if (s != 1.0 && (s == scale) && scale == 1.0) continue;
-    for (const auto& [i, j] :
-         nearest_arcs(flow.a, flow.b, oracle.tree_a(), oracle.tree_b(), params.nearest, s, std::nullopt))
-      if (beats_diagonal(flow, i, j) && !holds(graph, i, j)) fresh.push_back({i, j});
-    if (scale == 1.0) break;
+  // Every point's nearest neighbours (also the line's: leaving them to the seed's candidates took
+  // more pricing rounds, tests/bench/notes.md).
+  std::vector<std::uint32_t> near;
+  const auto keep = [&](std::uint32_t i, std::uint32_t j) {
+    if (beats_diagonal(flow, i, j) && !holds(graph, i, j)) fresh.push_back({i, j});
+  };
+  for (std::uint32_t i = 0; i < flow.n; ++i) {
+    oracle.tree_b().nearest(flow.a[i], params.nearest, near, i);
+    for (const std::uint32_t j : near) keep(i, j);
+  }
+  for (std::uint32_t j = 0; j < flow.m; ++j) {
+    oracle.tree_a().nearest(flow.b[j], params.nearest, near, j);
+    for (const std::uint32_t i : near) keep(i, j);
   }
   for (const auto& [i, j] : seed.candidates)
     if (beats_diagonal(flow, i, j) && !holds(graph, i, j)) fresh.push_back({i, j});
@@ -107,43 +101,8 @@ void solve_by_simplex(FlowState& flow, PairOracle& oracle, DualCertificate& cert
     }
     if (accept_ratio > 1 && flow.primal_cost() <= accept_ratio * certificate.dual_bound(flow)) break;
     if (stats.rounds >= params.max_rounds) break;
-#ifdef FNET_SIMPLEX_KNOBS
-    if (std::getenv("NS_TRACE"))
-      std::fprintf(stderr,
-                   "round %zu rebuilds %zu refreshes %zu scanned %zu deg %zu pivots %zu fresh %zu arcs %zu primal "
-                   "%.17g dual %.17g\n",
-                   stats.rounds, simplex.rebuilds_, simplex.refreshes_, simplex.scanned_total_,
-                   simplex.degenerate_pivots(), simplex.pivots(), fresh.size(), graph.size(), flow.primal_cost(),
-                   certificate.dual_bound(flow));
-#endif
     add(fresh);
   }
-#ifdef FNET_SIMPLEX_KNOBS
-  if (std::getenv("NS_TRACE")) {
-    CandidateArcs initial(flow.n);
-    PairArcs first;
-    for (const auto& [i, j] : seed.pairs) first.push_back({i, j});
-    for (const auto& [i, j] : seed.candidates) first.push_back({i, j});
-    for (const auto& [i, j] :
-         nearest_arcs(flow.a, flow.b, oracle.tree_a(), oracle.tree_b(), params.nearest, 1.0, std::nullopt))
-      first.push_back({i, j});
-    initial.add(first);
-    std::size_t missing[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
-    double line = 0;
-    for (std::uint32_t i = 0; i < flow.n; ++i)
-      if (flow.a[i].y == 0) line = 0;
-    for (std::uint32_t i = 0; i < flow.n; ++i) {
-      if (flow.mate_a[i] < 0) continue;
-      const auto j = static_cast<std::uint32_t>(flow.mate_a[i]);
-      const int kind = (flow.a[i].y == line ? 0 : 2) + (flow.b[j].y == line ? 0 : 1);
-      ++total[kind];
-      if (!holds(initial, i, j)) ++missing[kind];
-    }
-    std::fprintf(
-        stderr, "missing pairs line-line %zu/%zu line-off %zu/%zu off-line %zu/%zu off-off %zu/%zu; seed pairs %zu\n",
-        missing[0], total[0], missing[1], total[1], missing[2], total[2], missing[3], total[3], seed.pairs.size());
-  }
-#endif
   stats.pivots = simplex.pivots();
   stats.degenerate_pivots = simplex.degenerate_pivots();
   stats.pair_arcs = graph.size();

@@ -33,7 +33,7 @@ struct SimplexTransportParams {
   std::size_t line_min_points = 32;
   std::uint32_t band = 32;
   std::size_t max_band_cells = std::size_t{1} << 26;
-  std::uint32_t line_ranks = 8;  // columns either side of a line row's partner, as candidates
+  std::uint32_t line_ranks = 0;  // columns either side of a line row's partner, as candidates (0: none)
 };
 
 struct SimplexTransportStats {
