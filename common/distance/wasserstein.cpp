@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/distance/bottleneck.hpp"
+#include "common/distance/diagonal_components.hpp"
 #include "common/distance/diagonal_flow.hpp"
 #include "common/distance/infinity.hpp"
 #include "common/distance/simplex_transport.hpp"
@@ -66,10 +67,16 @@ struct Sums {
 // builder (optional) receives the matching found.
 // accept_ratio >= 1: the solve may stop once its cost is within that ratio of its dual bound.
 // Which solver for q = 1 and 2 (plain powers: never capped), measured (tests/bench/notes.md):
-// where at least half the points lie on one death line (floor PD1s), the shortest paths' line start
-// wins for W2 and for the approximate mode (a long line's matching shifts along chains that one
-// augmenting path moves at once and the simplex only pivot by pivot), the simplex for exact W1;
-// everywhere else (PD0s, diagrams without a dominant line, stacked or offset ones) the simplex.
+// - exact W1: the simplex (faster on every diagram measured);
+// - where at least half the points lie on one death line (floor PD1s), W2 and the approximate
+//   mode: the shortest paths' line start (a long line's matching shifts along chains that one
+//   augmenting path moves at once and the simplex only pivot by pivot);
+// - elsewhere W2 and the approximate mode: the simplex while the largest diagonal component
+//   (diagonal_components.hpp: the points that can ever be matched together) is at most
+//   kSimplexComponent points, the shortest paths above (one frame's PD0 of 55 000 points: the
+//   simplex over 60 s against 34 s; diagrams stacked along the diagonal: the simplex 1.7 s
+//   against over 300 s).
+constexpr std::size_t kSimplexComponent = 20000;
 // The relative gap between the simplex's matching and its dual bound beyond which an exact answer
 // is taken from the shortest paths instead.
 constexpr double kSimplexGap = 1e-11;
@@ -78,8 +85,9 @@ bool use_simplex(WassersteinSolver solver, std::span<const PlanePoint> a, std::s
                  const ArcPower& power, double accept_ratio) {
   if (!power.is_plain() || solver == WassersteinSolver::shortest_paths) return false;
   if (solver == WassersteinSolver::network_simplex) return true;
-  if (share_on_common_line(a, b) < DiagonalFlowParams{}.line_share) return true;
-  return power.is_identity() && accept_ratio == 1;
+  if (power.is_identity() && accept_ratio == 1) return true;
+  if (share_on_common_line(a, b) >= DiagonalFlowParams{}.line_share) return false;
+  return largest_diagonal_component(a, b) <= kSimplexComponent;
 }
 
 void build_matching(const FlowState& flow, MatchingBuilder* builder) {

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/distance/diagonal_components.hpp"
 #include "common/distance/work_deadline.hpp"
 #include "distance_support.hpp"
 #include "distance_test_util.hpp"
@@ -228,6 +229,42 @@ TEST(NetworkSimplex, ApproximateModeBoundsHold) {
       EXPECT_LE(r.upper - r.lower, delta * r.lower * (1 + 1e-12)) << "q " << q << " delta " << delta;
     }
   }
+}
+
+// Copies of a diagram moved apart along the diagonal never interact: each copy is a component of
+// its own, and the automatic choice gives W2 of such a stack to the simplex, while one diagram
+// with a dominant death line keeps the shortest paths' line start.
+TEST(NetworkSimplex, DiagonalComponentsAndTheAutomaticChoice) {
+  std::mt19937_64 rng(3008);
+  const Diagram a = random_diagram(rng, 300, 2, false), b = perturbed(rng, a, 0.01);
+  const auto pa = plane(a), pb = plane(b);
+  std::vector<PlanePoint> sa, sb;
+  for (int copy = 0; copy < 5; ++copy) {
+    const double shift = 100.0 * copy;  // far more than any persistence (<= 2)
+    for (const PlanePoint p : pa) sa.push_back({p.x + shift, p.y + shift});
+    for (const PlanePoint p : pb) sb.push_back({p.x + shift, p.y + shift});
+  }
+  EXPECT_EQ(largest_diagonal_component(sa, sb), largest_diagonal_component(pa, pb));
+  EXPECT_LE(largest_diagonal_component(pa, pb), pa.size() + pb.size());
+  // One point whose interval spans the stack joins every copy into one component.
+  std::vector<PlanePoint> joined = sa;
+  joined.push_back({500, 0});
+  EXPECT_EQ(largest_diagonal_component(joined, sb), sa.size() + sb.size() + 1);
+  // The stack's distance is the sum of the copies' (q-th powers), through the automatic choice.
+  for (const double q : {1.0, 2.0}) {
+    WassersteinStats st;
+    const double stacked = wasserstein_distance(points_diagram(sa), points_diagram(sb), {.q = q}, &st).value;
+    EXPECT_TRUE(st.network_simplex) << "q " << q;
+    const double one = wasserstein_distance(a, b, {.q = q, .solver = WassersteinSolver::shortest_paths}).value;
+    EXPECT_TRUE(close(stacked, std::pow(5.0, 1 / q) * one, 1e-12)) << "q " << q;
+  }
+  Diagram line_a, line_b;
+  for (int k = 0; k < 2000; ++k) line_a.push_back({1 + std::ldexp(k, -10), -1});
+  for (int k = 0; k < 2000; ++k) line_b.push_back({1.01 + std::ldexp(k, -10) * 1.02, -1});
+  WassersteinStats st;
+  wasserstein_distance(line_a, line_b, {.q = 2}, &st);
+  EXPECT_FALSE(st.network_simplex);
+  EXPECT_TRUE(st.line_start);
 }
 
 TEST(NetworkSimplex, StopsSoonAfterItsWorkDeadline) {
