@@ -12,10 +12,12 @@
 //  - strongly feasible: from every node a positive amount can be sent to the root along the tree
 //    (a tree arc carrying 0 points towards the root). The start (every point on the diagonal, HA ->
 //    HB carrying 0) is, and the leaving-arc rule below keeps it, so degenerate pivots cannot cycle.
-// Pivots: the entering arc is the most negative reduced cost cost + pi(u) - pi(v) within the first
-// block of arcs (sqrt of their number, scanned cyclically) that holds one improving beyond rounding; the
-// leaving arc is the last blocking arc of the cycle met from its apex in the direction of flow.
-// The subtree that moves is re-threaded by one pass over it (its potentials move by one amount).
+// Pivots: the entering arc is the most negative reduced cost cost + pi(u) - pi(v) within a block
+// (0.3 sqrt of the arcs' number) of a pool that holds every improving arc: after a pivot only arcs
+// with one end in the moved subtree changed, and of those only the ones its potential shift can
+// have lowered (into it when raised, out of it when lowered) are looked at again. The leaving arc
+// is the last blocking arc of the cycle met from its apex in the direction of flow. The subtree
+// that moves is re-threaded by one pass over it (its potentials move by one amount).
 #pragma once
 
 #include <cstddef>

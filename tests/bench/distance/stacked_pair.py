@@ -3,10 +3,12 @@
 usage: stacked_pair.py FNET_ANALYZE FRAMES_DIR OUT_A.json OUT_B.json [--pairs 38] [--force normal,tangential]
 
 FRAMES_DIR holds frame_NNNN_{contacts,particles}.csv (tests/data/lammps-mu0.5-seed777: 11 frames of
-one 2 000-disk compression). The pairs, in this order until --pairs are taken: consecutive frames
-(t, t + 1) for t = 0..9, then frames two apart (t, t + 2) for t = 0..8, each for the normal and then
-the tangential forces: 2 x (10 + 9) = 38 pairs, 30 172 points in A and 30 389 in B (floor convention:
-a class that never dies dies at 0). Copy k of a pair is moved along the diagonal by k * OFFSET, both
+one 2 000-disk compression; frames 0-4 have no loops, so the pairs are taken among frames 5-10). The
+pairs, nearest first, until --pairs are taken: gap 1 forward (t, t + 1), gap 1 backward (t + 1, t),
+then gaps 2, 3, ... alike, each direction for the normal and then the tangential forces, t
+ascending: the 20 pairs of gap 1, the 16 of gap 2 and the first 2 of gap 3 make the 38 pairs, 30 563
+points in A and 32 436 in B (floor convention: a class that never dies dies at 0;
+points on the diagonal dropped). Copy k of a pair is moved along the diagonal by k * OFFSET, both
 coordinates: persistence (the cost to the diagonal) and distances within a copy are unchanged, and
 a pair of points from different copies is farther apart than both their diagonal costs together,
 so no optimal matching uses it - W_q^q of the stack is the sum of the 38 pairs' W_q^q (the copies
