@@ -13,12 +13,21 @@
 
 namespace fnet {
 
+// Which exact solver (both certified by the same LP dual): automatic picks by size (README).
+enum class WassersteinSolver {
+  automatic,
+  shortest_paths,   // successive shortest paths with the line start (diagonal_flow.hpp)
+  network_simplex,  // network simplex on candidate arcs, priced against every pair (simplex_transport.hpp)
+};
+
 struct WassersteinParams {
   double q = 1;  // finite, >= 1
   EssentialConvention essential = EssentialConvention::floor;
   // Accepted relative error: the answer satisfies upper - lower <= delta * lower; the solve stops
   // as soon as its bounds reach it (lower == upper when it is exact by then).
   double delta = 0;
+  // q = 1 and 2 only: other q always take the shortest paths (their capped costs).
+  WassersteinSolver solver = WassersteinSolver::automatic;
 };
 
 // Statistics of one solve, for benchmarks and tests.
@@ -30,6 +39,8 @@ struct WassersteinStats {
   std::size_t repaired_rows = 0;              // rows freed by a violated arc
   bool completed = false;                     // finished by complete-graph searches
   bool line_start = false;                    // started from the line's optimal matching
+  bool network_simplex = false;               // solved by the network simplex (pivots, pricing rounds below)
+  std::size_t pivots = 0, pricing_rounds = 0;
   // d_Wq's lower bound from the solver's final potentials (LP duality): equal to the value up to
   // rounding, an optimality certificate that needs no reference solver.
   double dual_lower = 0;

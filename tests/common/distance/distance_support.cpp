@@ -17,6 +17,7 @@
 #include "common/codec/diagram_json.hpp"
 #include "common/codec/frame_csv.hpp"
 #include "common/distance/diagonal_flow.hpp"
+#include "common/distance/simplex_transport.hpp"
 #include "common/topology/force_network.hpp"
 #include "common/topology/frame.hpp"
 #include "common/topology/persistence.hpp"
@@ -196,20 +197,34 @@ double power(double x, double q, double unit) {
 }  // namespace
 
 Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q,
-                                double unit) {
+                                double unit, WassersteinSolver solver) {
   std::vector<double> da, db;
   for (const PlanePoint p : a) da.push_back(power(std::fabs(p.x - p.y) / 2, q, unit));
   for (const PlanePoint p : b) db.push_back(power(std::fabs(p.x - p.y) / 2, q, unit));
-  DiagonalFlow flow(a, b, ArcPower(q, unit));
-  flow.solve();
   const std::size_t n = a.size(), m = b.size();
-  const auto pi = flow.potentials();
+  std::vector<std::int64_t> mate_a(n);
+  std::vector<double> pi;
+  if (solver == WassersteinSolver::network_simplex) {
+    FlowState flow(a, b, ArcPower(q, unit));
+    PairOracle oracle(flow);
+    const DiagonalFlowParams params;
+    DualCertificate certificate(params);
+    SimplexTransportStats stats;
+    solve_by_simplex(flow, oracle, certificate, 1, {}, stats);
+    mate_a = flow.mate_a;
+    pi = flow.pi;
+  } else {
+    DiagonalFlow flow(a, b, ArcPower(q, unit));
+    flow.solve();
+    for (std::uint32_t i = 0; i < n; ++i) mate_a[i] = flow.mate_of_a(i);
+    pi.assign(flow.potentials().begin(), flow.potentials().end());
+  }
   const double ha = pi[n + m], hb = pi[n + m + 1];
   Certificate cert;
   // The matching, from the mates alone.
   std::vector<int> used(m, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t j = flow.mate_of_a(static_cast<std::uint32_t>(i));
+    const std::int64_t j = mate_a[i];
     if (j >= 0) {
       cert.matching_valid &= ++used[static_cast<std::size_t>(j)] == 1;
       cert.primal += power(linf_distance(a[i], b[static_cast<std::size_t>(j)]), q, unit);

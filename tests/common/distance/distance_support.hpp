@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/distance/essential_convention.hpp"
+#include "common/distance/wasserstein.hpp"
 #include "common/topology/diagram.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -58,8 +59,10 @@ struct Certificate {
   double primal = 0, dual = 0;
   bool matching_valid = true;
 };
+// solver: network_simplex certifies that solver's answer (simplex_transport.hpp), any other the
+// shortest paths' (diagonal_flow.hpp).
 Certificate certify_wasserstein(const std::vector<PlanePoint>& a, const std::vector<PlanePoint>& b, double q,
-                                double unit = 1);
+                                double unit = 1, WassersteinSolver solver = WassersteinSolver::shortest_paths);
 
 using fnet::testing::TempDir;  // tests/unit/temp_dir.hpp
 

@@ -54,7 +54,8 @@ void expect_between_bottleneck_and_root(const Diagram& a, const Diagram& b, Esse
     EXPECT_GE(value, bottleneck) << what << " " << label(q, c);
     EXPECT_LE(value, bottleneck * std::pow(terms, 1 / q) * (1 + 1e-12)) << what << " " << label(q, c);
     EXPECT_LE(value, previous * (1 + 1e-12)) << what << " " << label(q, c) << ": not below the smaller exponent's";
-    EXPECT_TRUE(close(st.dual_lower, value, 1e-11)) << what << " " << label(q, c) << ": dual bound " << st.dual_lower;
+    EXPECT_TRUE(close(st.dual_lower, value, 1e-11)) << what << " " << label(q, c) << ": dual bound " << st.dual_lower
+                                                    << " value " << value << " simplex " << st.network_simplex;
     previous = value;
   }
 }
