@@ -69,6 +69,7 @@ class DiagonalFlow {
   double primal_cost() const { return flow_.primal_cost(); }
   std::int64_t mate_of_a(std::uint32_t i) const { return flow_.mate_a[i]; }
   std::int64_t mate_of_b(std::uint32_t j) const { return flow_.mate_b[j]; }  // an index of A, kDiagonal or kNone
+  const FlowState& state() const { return flow_; }                           // the flow, its mates among it
 
   // Potentials (dual variables): reduced cost of u -> v is cost + potential(u) - potential(v).
   std::span<const double> potentials() const { return flow_.pi; }  // a_0..a_{n-1}, b_0..b_{m-1}, HA, HB

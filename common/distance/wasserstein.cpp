@@ -90,6 +90,7 @@ bool use_simplex(WassersteinSolver solver, std::span<const PlanePoint> a, std::s
   return largest_diagonal_component(a, b) <= kSimplexComponent;
 }
 
+// The matching a solved flow holds, into builder (if any): each point paired or sent to the diagonal.
 void build_matching(const FlowState& flow, MatchingBuilder* builder) {
   if (!builder) return;
   for (std::uint32_t i = 0; i < flow.n; ++i) {
@@ -157,17 +158,7 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
   st.repaired_rows = flow.repaired_rows();
   st.completed = flow.finished_on_complete_graph();
   st.line_start = flow.started_on_line();
-  if (builder) {
-    for (std::uint32_t i = 0; i < pa.size(); ++i) {
-      const std::int64_t j = flow.mate_of_a(i);
-      if (j >= 0)
-        builder->pair(i, static_cast<std::uint32_t>(j));
-      else
-        builder->a_to_diagonal(i);
-    }
-    for (std::uint32_t j = 0; j < pb.size(); ++j)
-      if (flow.mate_of_b(j) < 0) builder->b_to_diagonal(j);
-  }
+  build_matching(flow.state(), builder);
   return {flow.primal_cost() + essential_cost, std::max(0.0, flow.dual_bound() + essential_cost)};
 }
 
