@@ -119,7 +119,9 @@ def main():
                 time.sleep(0.05)
             check(follow.poll() == 0, f"the follow block ran: exit {follow.poll()} "
                   f"({open(os.path.join(work, 'follow.log')).read()[-600:]})")
-            check(0 < seen_live < frames, f"{seen_live} frames analyzed before LAMMPS finished")
+            # All of them may be: LAMMPS writes its last lines after its last snapshot, and a
+            # loaded machine may take longer over that than fnet-server over the last frame.
+            check(seen_live > 0, f"{seen_live} frames analyzed before LAMMPS finished")
             deadline = time.monotonic() + 20
             summary = None
             while time.monotonic() < deadline:
