@@ -13,6 +13,7 @@
 
 #include "common/distance/infinity.hpp"
 #include "common/distance/linf_kdtree.hpp"
+#include "common/distance/repeated_points.hpp"
 #include "common/distance/work_deadline.hpp"
 
 namespace fnet {
@@ -467,6 +468,20 @@ DistanceResult bottleneck_distance(const Diagram& a, const Diagram& b, const Bot
   double essential = 0;
   for (std::size_t k = 0; k < va.essential_births.size(); ++k)
     essential = std::max(essential, std::fabs(va.essential_births[k] - vb.essential_births[k]));
+
+  // Copies of points (ties everywhere): decided between the distinct points, exact.
+  if (solve_distinct(va.points, vb.points)) {
+    std::optional<MatchingBuilder> builder;
+    if (matching) {
+      builder.emplace(va, sa, a.size(), vb, sb, b.size());
+      builder->essentials();
+    }
+    const DistinctBottleneck d =
+        distinct_bottleneck(distinct_points(va.points), distinct_points(vb.points), builder ? &*builder : nullptr);
+    result.value = result.lower = result.upper = std::max(d.value, essential);
+    if (matching) *matching = builder->finish();
+    return result;
+  }
 
   // The matcher takes the points; a matching asked for needs them afterwards.
   ThresholdMatcher matcher(matching ? std::vector(va.points) : std::move(va.points),

@@ -10,14 +10,33 @@
 namespace fnet {
 
 NetworkSimplex::NetworkSimplex(std::span<const double> da, std::span<const double> db)
+    : NetworkSimplex(da, db, {}, {}) {}
+
+NetworkSimplex::NetworkSimplex(std::span<const double> da, std::span<const double> db,
+                               std::span<const std::uint32_t> count_a, std::span<const std::uint32_t> count_b)
     : n_(static_cast<std::uint32_t>(da.size())), m_(static_cast<std::uint32_t>(db.size())), root_(n_ + m_ + 1) {
   const std::uint32_t nodes = n_ + m_ + 2, ha = n_ + m_, hb = root_;
+  if ((!count_a.empty() && count_a.size() != n_) || (!count_b.empty() && count_b.size() != m_))
+    throw std::invalid_argument("NetworkSimplex: one count per point");
+  const auto count = [](std::span<const std::uint32_t> counts, std::uint32_t k) -> std::int64_t {
+    if (counts.empty()) return 1;
+    if (counts[k] == 0) throw std::invalid_argument("NetworkSimplex: a point's count is 0");
+    return counts[k];
+  };
+  supply_.assign(nodes, 0);
+  for (std::uint32_t i = 0; i < n_; ++i) supply_[i] = count(count_a, i), supply_[root_] -= supply_[i];
+  for (std::uint32_t j = 0; j < m_; ++j) supply_[n_ + j] = -count(count_b, j), supply_[ha] -= supply_[n_ + j];
+  if (supply_[ha] > std::numeric_limits<std::int32_t>::max() ||
+      -supply_[root_] > std::numeric_limits<std::int32_t>::max())
+    throw std::invalid_argument("NetworkSimplex: more than 2^31 - 1 points on a side");
   arcs_.reserve(n_ + m_ + 1);
   for (std::uint32_t i = 0; i < n_; ++i) arcs_.push_back({i, hb, da[i]});
   for (std::uint32_t j = 0; j < m_; ++j) arcs_.push_back({ha, n_ + j, db[j]});
   arcs_.push_back({ha, hb, 0.0});
   first_pair_arc_ = arcs_.size();
-  flow_.assign(arcs_.size(), 1);
+  flow_.resize(arcs_.size());
+  for (std::uint32_t i = 0; i < n_; ++i) flow_[i] = static_cast<std::int32_t>(supply_[i]);
+  for (std::uint32_t j = 0; j < m_; ++j) flow_[n_ + j] = static_cast<std::int32_t>(-supply_[n_ + j]);
   flow_.back() = 0;
   in_tree_.assign(arcs_.size(), 1);
 
@@ -170,6 +189,25 @@ std::int64_t NetworkSimplex::find_entering() {
   return best_arc;
 }
 
+std::int64_t NetworkSimplex::find_entering_by_blocks() {
+  const std::size_t count = arcs_.size();
+  const std::size_t block = std::max<std::size_t>(16, static_cast<std::size_t>(std::sqrt(static_cast<double>(count))));
+  double best = 0;
+  std::int64_t best_arc = -1;
+  std::size_t looked = 0;
+  while (looked < count) {
+    const auto e = static_cast<std::uint32_t>(next_arc_);
+    next_arc_ = next_arc_ + 1 == count ? 0 : next_arc_ + 1;
+    if (improving(e)) {
+      const double rc = reduced_cost(e);
+      if (rc < best) best = rc, best_arc = e;
+    }
+    if (++looked % block == 0 && best_arc >= 0) break;
+  }
+  scanned_total_ += looked;
+  return best_arc;
+}
+
 void NetworkSimplex::refresh_pool() {
   // Only arcs with exactly one end in the moved subtree changed their reduced cost
   // cost + pi(from) - pi(to), by +-sigma: raised potentials (sigma > 0) lower it on arcs into the
@@ -313,9 +351,18 @@ void NetworkSimplex::recompute_potentials() {
 void NetworkSimplex::solve() {
   // Pivot, then drop the pivots' rounding and look again; a pass after the recomputation that
   // finds nothing ends it. Three passes at most: after that what is left is rounding.
-  build_incidence();
+  if (!by_blocks_) build_incidence();
   for (int pass = 0; pass < 3; ++pass) {
     const std::size_t before = pivots_;
+    if (by_blocks_) {
+      for (std::int64_t e; (e = find_entering_by_blocks()) >= 0;) {
+        check_work_deadline();
+        pivot(static_cast<std::uint32_t>(e));
+      }
+      recompute_potentials();
+      if (pivots_ == before) break;
+      continue;
+    }
     rebuild_pool();
     for (;;) {
       std::int64_t e = find_entering();
@@ -333,6 +380,13 @@ void NetworkSimplex::solve() {
     recompute_potentials();
     if (pivots_ == before) break;
   }
+}
+
+std::vector<NetworkSimplex::PairFlow> NetworkSimplex::pair_flows() const {
+  std::vector<PairFlow> out;
+  for (std::size_t e = first_pair_arc_; e < arcs_.size(); ++e)
+    if (flow_[e] > 0) out.push_back({arcs_[e].from, arcs_[e].to - n_, static_cast<std::uint32_t>(flow_[e])});
+  return out;
 }
 
 std::vector<std::int64_t> NetworkSimplex::mates_of_a() const {
@@ -355,11 +409,7 @@ bool NetworkSimplex::consistent() const {
   }
   if (w != root_) return false;
   std::vector<std::uint32_t> sizes(nodes, 1);
-  std::vector<std::int64_t> balance(nodes, 0);
-  for (std::uint32_t i = 0; i < n_; ++i) balance[i] = 1;
-  for (std::uint32_t j = 0; j < m_; ++j) balance[n_ + j] = -1;
-  balance[n_ + m_] = m_;
-  balance[root_] = -static_cast<std::int64_t>(n_);
+  std::vector<std::int64_t> balance = supply_;
   std::size_t tree_arcs = 0;
   for (std::size_t e = 0; e < arcs_.size(); ++e) {
     if (flow_[e] < 0) return false;

@@ -1,8 +1,8 @@
 // A primal network simplex for the Wasserstein transport on a sparse graph (the diagonal as two
 // hubs, as in flow_state.hpp):
 //   a_i -> HB cost da_i, HA -> b_j cost db_j, HA -> HB cost 0, and the pair arcs a_i -> b_j given.
-// Supplies a_i 1, HA m; demands b_j 1, HB n. Every arc is uncapacitated: a transportation problem
-// (sources a_i and HA, sinks b_j and HB), so a flow is integral and a basis is a spanning tree.
+// Supplies a_i 1, HA m; demands b_j 1, HB n (or counts per point, see the constructors). Every arc is uncapacitated: a
+// transportation problem (sources a_i and HA, sinks b_j and HB), so a flow is integral and a basis is a spanning tree.
 // Nodes are numbered as in FlowState: a_0..a_{n-1}, b_0..b_{m-1}, HA = n + m, HB = n + m + 1.
 //
 // The basis is a spanning tree rooted at HB, stored as parent, pred (the arc to the parent) and its
@@ -36,6 +36,10 @@ class NetworkSimplex {
 
   // Starts from every point on the diagonal: a_i -> HB and HA -> b_j carry 1, HA -> HB 0.
   NetworkSimplex(std::span<const double> da, std::span<const double> db);
+  // The same with points that stand for several (count_a[i] at a_i, count_b[j] at b_j, each >= 1,
+  // at most 2^31 - 1 in all per side): a_i -> HB carries count_a[i], HA -> b_j count_b[j].
+  NetworkSimplex(std::span<const double> da, std::span<const double> db, std::span<const std::uint32_t> count_a,
+                 std::span<const std::uint32_t> count_b);
 
   // Starts from a matching instead: pairs (i, j, cost), each i and each j at most once, become
   // tree arcs carrying 1 (b_j hanging from a_i, a_i -> HB carrying 0); every other point on the
@@ -46,6 +50,11 @@ class NetworkSimplex {
   // its reduced cost is checked by solve(). The caller adds each pair at most once.
   void add_pair_arc(std::uint32_t i, std::uint32_t j, double cost);
 
+  // Pricing by plain block search instead of the pool: the most negative reduced cost within each
+  // block of sqrt(arcs) arcs, cyclically over all of them. For dense graphs, where a pivot moves
+  // subtrees whose arcs are most of the graph and the pool would be rebuilt at every pivot.
+  void price_by_blocks() { by_blocks_ = true; }
+
   // Pivots until no arc has a reduced cost below rounding (kRelativeTolerance); the potentials are then recomputed
   // from the tree (rounding of the pivots' updates dropped) and checked again. Calls
   // check_work_deadline() once per pivot.
@@ -53,6 +62,11 @@ class NetworkSimplex {
 
   // The matching the flow is: j >= 0 for a pair, -1 when a_i (or b_j) goes to the diagonal.
   std::vector<std::int64_t> mates_of_a() const;
+  // The pair arcs that carry flow, with their amounts (what the counts' constructor's flow is).
+  struct PairFlow {
+    std::uint32_t i, j, amount;
+  };
+  std::vector<PairFlow> pair_flows() const;
   std::span<const double> potentials() const { return pi_; }
   // An arc enters when its reduced cost is below -kRelativeTolerance times the sum of its terms'
   // magnitudes (cost and both potentials: a few ulps of them), so that rounding in the potentials
@@ -81,6 +95,7 @@ class NetworkSimplex {
   bool improving(std::uint32_t e) const;  // off the tree, reduced cost below rounding
   // Block search over the pool of improving arcs; -1 when the pool holds none.
   std::int64_t find_entering();
+  std::int64_t find_entering_by_blocks();  // -1 when no arc is improving
   void build_incidence();
   void rebuild_pool();  // every improving arc, by a scan of all
   void refresh_pool();  // after a pivot: the arcs at the moved subtree's nodes
@@ -93,6 +108,7 @@ class NetworkSimplex {
   void link_thread(std::span<const std::uint32_t> order);  // the thread through order, circular
 
   std::uint32_t n_, m_, root_;
+  std::vector<std::int64_t> supply_;  // per node: what leaves it minus what enters, in any flow
   std::vector<Arc> arcs_;
   std::vector<std::int32_t> flow_;
   std::vector<std::uint8_t> in_tree_;
@@ -107,6 +123,8 @@ class NetworkSimplex {
   std::vector<double> pi_;
 
   std::size_t next_in_pool_ = 0, pivots_ = 0, degenerate_ = 0;
+  bool by_blocks_ = false;
+  std::size_t next_arc_ = 0;  // block search's cursor
   // Pricing: the pool holds every arc off the tree whose reduced cost was improving when last
   // looked at (a superset of the improving arcs: a pivot changes only the reduced costs of arcs
   // with one end in the moved subtree, and those are looked at again after it).

@@ -12,6 +12,7 @@
 #include "common/distance/diagonal_components.hpp"
 #include "common/distance/diagonal_flow.hpp"
 #include "common/distance/infinity.hpp"
+#include "common/distance/repeated_points.hpp"
 #include "common/distance/simplex_transport.hpp"
 #include "common/distance/sorted_birth_seed.hpp"
 
@@ -119,6 +120,15 @@ Sums solve(const ConventionView& va, const ConventionView& vb, double factor, co
       for (const PlanePoint p : *side) cost += power(std::fabs(p.x - p.y) / 2);
     if (builder) builder->all_to_diagonal();
     return {cost, cost};  // the only matching there is
+  }
+
+  // Copies of points (ties everywhere): the transport between the distinct points, exact.
+  if (power.is_plain() && solver != WassersteinSolver::shortest_paths && solve_distinct(pa, pb)) {
+    const DistinctTransport t = distinct_transport(distinct_points(pa), distinct_points(pb), power, builder);
+    st.network_simplex = true;
+    st.pivots = t.pivots;
+    st.candidate_arcs = t.pair_arcs;
+    return {t.cost + essential_cost, std::max(0.0, t.dual + essential_cost)};
   }
 
   if (use_simplex(solver, pa, pb, power, accept_ratio)) {

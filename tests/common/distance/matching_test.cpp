@@ -1,6 +1,7 @@
 // The matching a distance returns: a valid matching (every point exactly once), whose terms have
 // the lengths of their points under the convention, and whose cost is the distance itself:
 // (sum of length^q)^(1/q) for W_q to rounding, the longest length for d_B exactly.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -127,6 +128,25 @@ TEST(Matching, TieHeavyDiagrams) {
     const Diagram b = k % 2 ? perturbed(rng, a, 0.0)
                             : random_diagram(rng, std::uniform_int_distribution<std::size_t>(0, 40)(rng), 4.0, true);
     check_pair(a, b, "case " + std::to_string(k));
+    if (HasFatalFailure()) return;
+  }
+}
+
+// Every point in two to four copies: the distances solve between the distinct points
+// (repeated_points.hpp) and split the flow among the copies.
+TEST(Matching, CopiesOfPoints) {
+  std::mt19937_64 rng(803);
+  const auto copies = [&](const Diagram& d) {
+    Diagram out;
+    for (const PersistencePoint& p : d)
+      for (int k = std::uniform_int_distribution<int>(2, 4)(rng); k > 0; --k) out.push_back(p);
+    std::shuffle(out.begin(), out.end(), rng);
+    return out;
+  };
+  for (int k = 0; k < 100; ++k) {
+    const Diagram a = random_diagram(rng, std::uniform_int_distribution<std::size_t>(1, 12)(rng), 4.0, k % 2 == 0);
+    const Diagram b = k % 3 ? perturbed(rng, a, 0.3) : random_diagram(rng, 8, 4.0, k % 2 == 0);
+    check_pair(copies(a), copies(b), "case " + std::to_string(k), {1.0, 2.0});
     if (HasFatalFailure()) return;
   }
 }
