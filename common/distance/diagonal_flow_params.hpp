@@ -60,8 +60,10 @@ struct DiagonalFlowParams {
   // size of its terms (cost and both potentials: rounding is relative to them, and costs can be
   // 1e-20 of the potentials); smaller violations are only charged to the dual bound.
   double violation_tolerance = 1e-14;
-  // The sweeps ignore improvements below this, relative to the label (at least 1): under q = 1
-  // whole families of cycles cost exactly 0, and their rounded sums would lower labels forever.
+  // The sweeps ignore improvements below this, relative to the terms (both labels and the arc's
+  // cost, whose rounding it is): under q = 1 whole families of cycles cost exactly 0, and their
+  // rounded sums would lower labels forever. Below violation_tolerance, so that what the sweeps
+  // leave is never flagged by the check.
   double sweep_tolerance = 0x1p-50;
   // The dual bound is void when HA -> HB, unbounded, has a reduced cost below -hub_tolerance times
   // the sum of the hubs' potentials' magnitudes.
