@@ -256,6 +256,27 @@ TEST(DistanceSparseStage, ALineOfSmallCostsCertifiesItsStartInOneRound) {
   }
 }
 
+// Exact W1 goes to the network simplex, but not when (nearly) every point is on one line: there
+// the automatic choice takes the line start, which certifies the line's matching at once.
+TEST(DistanceSparseStage, ExactW1WithEveryPointOnTheLineTakesTheLineStart) {
+  std::mt19937_64 rng(62);
+  std::uniform_real_distribution<double> u(1, 2);
+  Diagram a, b;
+  for (int k = 0; k < 10000; ++k) {
+    const double x = u(rng);
+    a.push_back({x, kNeverDies});
+    b.push_back({x + 1e-4, kNeverDies});
+  }
+  WassersteinStats st;
+  const DistanceResult r = wasserstein_distance(a, b, {.q = 1}, &st);
+  EXPECT_TRUE(st.line_start);
+  EXPECT_FALSE(st.network_simplex);
+  EXPECT_NEAR(r.value, wasserstein_distance(a, b, {.q = 1, .solver = WassersteinSolver::network_simplex}).value,
+              1e-11 * r.value);
+  a.push_back({0.5, 0.25});  // one point off the line of 10 001: still the line start
+  EXPECT_TRUE((wasserstein_distance(a, b, {.q = 1}, &st), st.line_start));
+}
+
 // On the LAMMPS PD1 pairs (~90 % on the line) the line start is what the solver takes.
 TEST(DistanceSparseStage, LammpsPd1PairsStartOnTheLine) {
   for (const bool tangential : {false, true}) {
