@@ -19,7 +19,17 @@ std::optional<boost::program_options::variables_map> parse_options(
   po::variables_map vm;
   auto parser = po::command_line_parser(args).options(options);
   if (positional) parser.positional(*positional);
-  po::store(parser.run(), vm);
+  const po::parsed_options parsed = parser.run();
+  // A command without positional arguments refuses any: an unquoted pattern the shell expanded
+  // (--lammps-atoms atoms.*.txt) would otherwise analyze its first file alone.
+  if (!positional) {
+    const std::vector<std::string> stray = po::collect_unrecognized(parsed.options, po::include_positional);
+    if (!stray.empty())
+      throw po::error("unexpected argument '" + stray.front() + "'" +
+                      (stray.size() > 1 ? " and " + std::to_string(stray.size() - 1) + " more" : std::string()) +
+                      ": every value follows its option; quote a file pattern so that the shell does not expand it");
+  }
+  po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << options << "\n";
     return std::nullopt;

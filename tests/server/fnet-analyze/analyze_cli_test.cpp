@@ -43,6 +43,23 @@ TEST_F(AnalyzeCli, AnEnsembleNameOutsideTheRunIdAlphabetIsAUsageError) {
   EXPECT_FALSE(std::filesystem::exists(dir() / "d")) << "nothing is done before the input is checked";
 }
 
+// An unquoted pattern (--lammps-atoms atoms.*.txt) reaches the command as one value and stray
+// words: refused, naming the first, before any work.
+TEST_F(AnalyzeCli, StrayArgumentsAreAUsageErrorNamingTheFirst) {
+  std::filesystem::create_directories(dir() / "csv");
+  const std::string csv = (dir() / "csv").string(), data = (dir() / "d").string();
+  for (const char* command : {"store", "publish"}) {
+    std::vector<std::string> args{command, "--csv-dir", csv, "atoms.1.txt", "atoms.2.txt", "--run-id", "r"};
+    if (std::string(command) == "store") args.insert(args.end(), {"--data-dir", data});
+    EXPECT_THAT(fails_with(2, args),
+                AllOf(HasSubstr("unexpected argument 'atoms.1.txt' and 1 more"), HasSubstr("quote a file pattern")))
+        << command;
+  }
+  EXPECT_THAT(fails_with(2, {"diagram", "--contacts", (dir() / "c.csv").string(), "stray"}),
+              HasSubstr("unexpected argument 'stray'"));
+  EXPECT_FALSE(std::filesystem::exists(dir() / "d")) << "nothing is done before the input is checked";
+}
+
 TEST_F(AnalyzeCli, StoreFromAFileThatIsNotHdf5FailsWithOne) {
   const auto text = write("notes.h5", "not HDF5\n");
   EXPECT_THAT(fails_with(1, {"store", "--run-file", text.string(), "--data-dir", (dir() / "d").string()}),
