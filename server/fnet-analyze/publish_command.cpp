@@ -28,9 +28,10 @@ int publish_command(const std::vector<std::string>& args) {
       "Publishes the run's announcement and every frame on the DDS topics fnet_RunInfo and\n"
       "fnet_ForceFrame (set CYCLONEDDS_URI), then waits until every matched reader acknowledged\n"
       "them. Frames are sent as recorded: invalid ones too (fnet-server rejects and reports them).\n"
-      "Exit code 3: a matched reader had not acknowledged every frame after --ack-timeout seconds,\n"
-      "or went away during the run, or a fnet-server among them had not stored them by then: it may\n"
-      "lack frames. Exit code 4: a fnet-server reading the run reports that it cannot store it (a\n"
+      "Exit code 3: no reader matched at all (the frames reached no one), or a matched reader had not\n"
+      "acknowledged every frame after --ack-timeout seconds, or went away during the run, or a\n"
+      "fnet-server among them had not stored them by then: it may lack frames. Exit code 4: a fnet-server reading the "
+      "run reports that it cannot store it (a\n"
       "store fault: a full disk, no file descriptor left), naming the run, the server and why.\n\n"
       "options");
   double rate = 0;
@@ -93,6 +94,13 @@ int publish_command(const std::vector<std::string>& args) {
   if (!stores.faults.empty()) return kStoreFault;
   if (lost > 0 || !acknowledged || !stores.unconfirmed.empty()) return kNotDelivered;
   if (linger > 0) std::this_thread::sleep_for(std::chrono::duration<double>(linger));
+  // No reader matched, neither before the frames nor while they were served: they reached no one.
+  if (publisher.matched_readers() == 0) {
+    std::cerr << "fnet-analyze publish: error: run " << info.run_id << ": no reader on DDS domain " << domain
+              << " matched (is fnet-server reading that domain? see --domain and --wait-for-reader): the frames "
+                 "reached no one\n";
+    return kNotDelivered;
+  }
   return 0;
 }
 

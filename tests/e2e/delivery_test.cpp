@@ -2,7 +2,7 @@
 // fnet-analyze publish against a fnet-server that stops reading (SIGSTOP) for longer than the
 // publisher's --ack-timeout fails with exit code 3 and says so; with the default timeout it waits
 // the stall out and every frame is analyzed (and stored); a server killed mid-run is reported once
-// DDS drops it.
+// DDS drops it; a publisher no reader ever matched fails too.
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -137,6 +137,22 @@ TEST(Delivery, FnetSimdWithOnlyDdsFailsWhenAReaderStopsAcknowledging) {
   EXPECT_NE(err.find("error: a DDS subscriber had not acknowledged every frame after --ack-timeout 2 s"),
             std::string::npos)
       << err;
+}
+
+// A domain no one reads: the publisher waits --wait-for-reader, then fails with exit code 3 naming
+// the domain, as fnet-simd does, rather than reporting the frames published.
+TEST(Delivery, PublishingToADomainNoOneReadsFails) {
+  testing::TempDir tmp;
+  constexpr int kUnreadDomain = 222;
+  Process publisher(FNET_ANALYZE,
+                    {"publish", "--csv-dir", four_disk_run(tmp.path() / "run").string(), "--run-id", "unread",
+                     "--domain", std::to_string(kUnreadDomain), "--wait-for-reader", "0.5"},
+                    tmp.path() / "publish.log", dds_environment());
+  const std::optional<int> code = publisher.wait(60s);
+  ASSERT_TRUE(code.has_value());
+  const std::string err = read_file(tmp.path() / "publish.log");
+  EXPECT_EQ(*code, 3) << err;
+  EXPECT_NE(err.find("run unread: no reader on DDS domain 222 matched"), std::string::npos) << err;
 }
 
 }  // namespace
