@@ -6,6 +6,8 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "common/codec/command_line.hpp"
+
 namespace fnet::client {
 
 namespace po = boost::program_options;
@@ -82,7 +84,9 @@ Endpoint take_endpoint(std::vector<std::string>& args, const char* env_host, con
 bool parse_command(const po::options_description& options, const std::vector<std::string>& args,
                    po::variables_map* out) {
   po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).run(), vm);
+  const po::parsed_options parsed = po::command_line_parser(args).options(options).run();
+  refuse_stray_arguments(parsed);
+  po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << options << "\n";
     return false;

@@ -8,6 +8,7 @@
 
 #include <boost/program_options.hpp>
 
+#include "common/codec/command_line.hpp"
 #include "server/fnet-analyze/commands.hpp"
 
 namespace fnet::analyze {
@@ -20,15 +21,7 @@ std::optional<boost::program_options::variables_map> parse_options(
   auto parser = po::command_line_parser(args).options(options);
   if (positional) parser.positional(*positional);
   const po::parsed_options parsed = parser.run();
-  // A command without positional arguments refuses any: an unquoted pattern the shell expanded
-  // (--lammps-atoms atoms.*.txt) would otherwise analyze its first file alone.
-  if (!positional) {
-    const std::vector<std::string> stray = po::collect_unrecognized(parsed.options, po::include_positional);
-    if (!stray.empty())
-      throw po::error("unexpected argument '" + stray.front() + "'" +
-                      (stray.size() > 1 ? " and " + std::to_string(stray.size() - 1) + " more" : std::string()) +
-                      ": every value follows its option; quote a file pattern so that the shell does not expand it");
-  }
+  if (!positional) refuse_stray_arguments(parsed);
   po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << options << "\n";

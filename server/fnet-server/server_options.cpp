@@ -12,6 +12,7 @@
 #include <boost/program_options.hpp>
 
 #include "common/build_info/build_info.hpp"
+#include "common/codec/command_line.hpp"
 #include "server/rpc/access.hpp"
 
 namespace po = boost::program_options;
@@ -110,7 +111,9 @@ std::variant<ServerOptions, int> parse_server_options(int argc, char** argv) {
   add_limit_options(options, o.limits);
   try {
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, options), vm);
+    const po::parsed_options parsed = po::parse_command_line(argc, argv, options);
+    refuse_stray_arguments(parsed);
+    po::store(parsed, vm);
     if (vm.count("help")) {
       std::cout << options << "\n";
       return 0;

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "common/build_info/build_info.hpp"
+#include "common/codec/command_line.hpp"
 #include "common/run/run_names.hpp"
 
 namespace fnet::sim {
@@ -97,6 +98,7 @@ std::optional<SimdOptions> parse_simd_options(int argc, char** argv) {
   po::options_description all;
   all.add(options).add(hidden);
   const po::parsed_options parsed = po::parse_command_line(argc, argv, all);
+  refuse_stray_arguments(parsed);
   given = parsed.options;
   po::store(parsed, vm);
   if (vm.count("help")) {

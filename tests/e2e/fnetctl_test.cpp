@@ -322,6 +322,7 @@ TEST_F(Fnetctl, BadValuesAreUsageErrorsNamingTheFlag) {
   for (const char* bad : {"2", "-1"}) usage_error({"watch", "--run", "stored", "--dim", bad}, "--dim");
   usage_error({"watch", "--run", "stored", "--force", "shear"}, "--force");
   usage_error({"watch", "--run", "stored", "--metric", "wasserstein"}, "--metric");
+  usage_error({"query", "--metric", "bottleneck", "stray", "words"}, "unexpected argument 'stray' and 1 more");
 }
 
 TEST_F(Fnetctl, GlobalOptionsWorkAnywhereAndComeFromTheEnvironment) {

@@ -565,6 +565,12 @@ TEST(Service, BindAddressThatIsNoAddressIsAUsageError) {
   EXPECT_EQ(server.wait(60s), 2);
   const std::string text = read_file(tmp.path() / "server.log");
   EXPECT_NE(text.find("--bind 'localhost:7707'"), std::string::npos) << text;
+  // A word that is no option's value (an unquoted pattern, a typo) is refused, not dropped.
+  Process stray(FNET_SERVER, {"--data-dir", (tmp.path() / "data").string(), "--port", "0", "stray"},
+                tmp.path() / "stray.log", dds_environment());
+  EXPECT_EQ(stray.wait(60s), 2);
+  const std::string said = read_file(tmp.path() / "stray.log");
+  EXPECT_NE(said.find("unexpected argument 'stray'"), std::string::npos) << said;
 }
 
 // proto/api.md's Limits table against the server: every flag it names is an option of fnet-server.

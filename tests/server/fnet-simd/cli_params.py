@@ -61,7 +61,8 @@ for args, flag in [(["--particles", "-5"], "--particles"), (["--particles", "abc
                    (["--rho-initial", "0.7", "--rho-final", "0.7"], "--rho-final"),
                    (["--rho-final", "0.5"], "--rho-final"),
                    (["--particles", "300", "--box", "19", "--rho-final", "0.6"], "--rho-final"),
-                   (["--particles", "300", "--rho-initial", "0.85"], "--rho-initial")]:
+                   (["--particles", "300", "--rho-initial", "0.85"], "--rho-initial"),
+                   (["--particles", "300", "stray"], "unexpected argument 'stray'")]:
     res = run(*args, "--no-dds", "--quiet", "--export-csv", out_dir, timeout=20)
     wrote = os.path.exists(out_dir)
     shutil.rmtree(out_dir, ignore_errors=True)
