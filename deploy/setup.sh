@@ -13,8 +13,9 @@ packages=(
   openssl
   # tests
   libgtest-dev libgmock-dev googletest clang-format
-  # the fuzz targets (tests/fuzz): clang with libFuzzer and the sanitizers' runtimes, llvm-symbolizer
-  clang-14 libclang-rt-14-dev libfuzzer-14-dev llvm-14
+  # the fuzz targets (tests/fuzz): clang with libFuzzer and the sanitizers' runtimes, llvm-symbolizer;
+  # clang and llvm give the unversioned names (clang, clang++, llvm-symbolizer) that they call
+  clang-14 libclang-rt-14-dev libfuzzer-14-dev llvm-14 clang llvm
   # independent oracles used by tests and benchmarks
   libgudhi-dev python3 python3-gudhi python3-numpy python3-scipy python3-pot python3-h5py
   # the Python client (client/python) and its tests; pip install ./client/python into a venv
