@@ -46,9 +46,9 @@ bool lower_potentials(FlowState& flow, const CandidateArcs& candidates, std::spa
   // Improvements within rounding are ignored (params.sweep_tolerance): rounding in pi(u) + c is
   // relative to the terms (both labels and the arc's cost), as in the certificate's check, whose
   // tolerance is larger, so that an arc the sweeps leave is never one the check flags.
-  const auto relax_to = [&](std::uint32_t v, double d, double c) {
-    const double terms = std::fabs(d - c) + std::fabs(c) + std::fabs(pi[v]);
-    if (!(d < pi[v] - params.sweep_tolerance * terms)) return;
+  const auto relax_to = [&](std::uint32_t v, double from, double c) {
+    const double d = from + c;
+    if (!(d < pi[v] - params.sweep_tolerance * (std::fabs(from) + std::fabs(c) + std::fabs(pi[v])))) return;
     pi[v] = d;
     changed = true;
   };
@@ -58,21 +58,21 @@ bool lower_potentials(FlowState& flow, const CandidateArcs& candidates, std::spa
       for (const std::uint32_t j : candidates.row(u)) {
         if (flow.mate_a[u] == static_cast<std::int64_t>(j)) continue;
         const double c = flow.cost(u, j);
-        if (c < flow.da[u] + flow.db[j]) relax_to(flow.node_of_b(j), d + c, c);
+        if (c < flow.da[u] + flow.db[j]) relax_to(flow.node_of_b(j), d, c);
       }
-      if (flow.mate_a[u] != kDiagonal) relax_to(flow.hb, d + flow.da[u], flow.da[u]);
+      if (flow.mate_a[u] != kDiagonal) relax_to(flow.hb, d, flow.da[u]);
     } else if (flow.is_b(u)) {
       const std::int64_t mate = flow.mate_b[flow.b_of_node(u)];
-      if (mate >= 0) relax_to(static_cast<std::uint32_t>(mate), d - flow.mate_cost_a[mate], -flow.mate_cost_a[mate]);
-      if (mate == kDiagonal) relax_to(flow.ha, d - flow.db[flow.b_of_node(u)], -flow.db[flow.b_of_node(u)]);
+      if (mate >= 0) relax_to(static_cast<std::uint32_t>(mate), d, -flow.mate_cost_a[mate]);
+      if (mate == kDiagonal) relax_to(flow.ha, d, -flow.db[flow.b_of_node(u)]);
     } else if (u == flow.ha) {
       relax_to(flow.hb, d, 0);
       for (std::uint32_t j = 0; j < flow.m; ++j)
-        if (flow.mate_b[j] != kDiagonal) relax_to(flow.node_of_b(j), d + flow.db[j], flow.db[j]);
+        if (flow.mate_b[j] != kDiagonal) relax_to(flow.node_of_b(j), d, flow.db[j]);
     } else {
       if (flow.flow_hub > 0) relax_to(flow.ha, d, 0);
       for (std::uint32_t i = 0; i < flow.n; ++i)
-        if (flow.mate_a[i] == kDiagonal) relax_to(i, d - flow.da[i], -flow.da[i]);
+        if (flow.mate_a[i] == kDiagonal) relax_to(i, d, -flow.da[i]);
     }
   };
   for (std::size_t sweep = 0; changed; ++sweep) {

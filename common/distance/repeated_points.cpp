@@ -5,12 +5,32 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <optional>
 
 #include "common/distance/linf_kdtree.hpp"
 #include "common/distance/network_simplex.hpp"
 
 namespace fnet {
+
+namespace {
+
+// The flow between distinct points as a matching of the input's points: each pair flow of amount
+// k pairs k copies of its two points, and the copies no flow took go to the diagonal.
+void split_among_copies(const DistinctPoints& a, const DistinctPoints& b,
+                        std::span<const NetworkSimplex::PairFlow> flows, MatchingBuilder& builder) {
+  std::vector<std::uint32_t> next_a(a.first.begin(), a.first.end() - 1), next_b(b.first.begin(), b.first.end() - 1);
+  for (const auto& f : flows)
+    for (std::uint32_t k = 0; k < f.amount; ++k) builder.pair(a.members[next_a[f.i]++], b.members[next_b[f.j]++]);
+  for (std::uint32_t i = 0; i < a.points.size(); ++i)
+    while (next_a[i] < a.first[i + 1]) builder.a_to_diagonal(a.members[next_a[i]++]);
+  for (std::uint32_t j = 0; j < b.points.size(); ++j)
+    while (next_b[j] < b.first[j + 1]) builder.b_to_diagonal(b.members[next_b[j]++]);
+}
+
+bool solve_distinct(std::size_t distinct_a, std::size_t distinct_b, std::size_t points_a, std::size_t points_b) {
+  return 2 * (distinct_a + distinct_b) <= points_a + points_b && distinct_a * distinct_b <= kMaxDistinctArcs;
+}
+
+}  // namespace
 
 DistinctPoints distinct_points(std::span<const PlanePoint> points) {
   DistinctPoints out;
@@ -56,10 +76,6 @@ std::size_t count_distinct(std::span<const PlanePoint> points) {
     }
   }
   return distinct;
-}
-
-bool solve_distinct(std::size_t distinct_a, std::size_t distinct_b, std::size_t points_a, std::size_t points_b) {
-  return 2 * (distinct_a + distinct_b) <= points_a + points_b && distinct_a * distinct_b <= kMaxDistinctArcs;
 }
 
 bool solve_distinct(std::span<const PlanePoint> a, std::span<const PlanePoint> b) {
@@ -115,15 +131,7 @@ DistinctTransport distinct_transport(const DistinctPoints& a, const DistinctPoin
   }
   out.dual = dual;
 
-  if (builder) {
-    std::vector<std::uint32_t> next_a(a.first.begin(), a.first.end() - 1), next_b(b.first.begin(), b.first.end() - 1);
-    for (const auto& f : flows)
-      for (std::uint32_t k = 0; k < f.amount; ++k) builder->pair(a.members[next_a[f.i]++], b.members[next_b[f.j]++]);
-    for (std::uint32_t i = 0; i < n; ++i)
-      while (next_a[i] < a.first[i + 1]) builder->a_to_diagonal(a.members[next_a[i]++]);
-    for (std::uint32_t j = 0; j < m; ++j)
-      while (next_b[j] < b.first[j + 1]) builder->b_to_diagonal(b.members[next_b[j]++]);
-  }
+  if (builder) split_among_copies(a, b, flows, *builder);
   return out;
 }
 
@@ -214,12 +222,11 @@ DistinctBottleneck distinct_bottleneck(const DistinctPoints& a, const DistinctPo
 
   const std::int64_t total_a = std::accumulate(a.count.begin(), a.count.end(), std::int64_t{0}),
                      total_b = std::accumulate(b.count.begin(), b.count.end(), std::int64_t{0});
-  // Nodes: source, a_0.., HA, b_0.., HB, sink. Returns the flow network at r and its pair edges.
+  // Nodes: source, a_0.., HA, b_0.., HB, sink. Whether every copy is matched within r; flows
+  // (optional) receives the pair flows of the matching found.
   const std::uint32_t source = 0, ha = n + 1, hb = n + m + 2, sink = n + m + 3;
-  std::vector<std::uint32_t> pair_edges;
-  const auto decide = [&](double r, std::optional<MaxFlow>& out) {
+  const auto decide = [&](double r, std::vector<NetworkSimplex::PairFlow>* flows) {
     MaxFlow flow(n + m + 4);
-    pair_edges.clear();
     for (std::uint32_t i = 0; i < n; ++i) {
       flow.add(source, 1 + i, a.count[i]);
       if (da[i] <= r) flow.add(1 + i, hb, total_a);
@@ -231,20 +238,23 @@ DistinctBottleneck distinct_bottleneck(const DistinctPoints& a, const DistinctPo
       if (db[j] <= r) flow.add(ha, n + 2 + j, b.count[j]);
     }
     flow.add(hb, sink, total_a);
-    for (std::size_t k = 0; k < pairs.size(); ++k)
-      if (pairs[k].length <= r) pair_edges.push_back(flow.add(1 + pairs[k].i, n + 2 + pairs[k].j, total_a));
+    std::vector<std::pair<const Pair*, std::uint32_t>> pair_edges;  // each pair within r, its edge
+    for (const Pair& p : pairs)
+      if (p.length <= r) pair_edges.push_back({&p, flow.add(1 + p.i, n + 2 + p.j, total_a)});
     const bool feasible = flow.run(source, sink) == total_a + total_b;
-    out.emplace(std::move(flow));
+    if (flows)
+      for (const auto& [p, e] : pair_edges)
+        if (const std::int64_t amount = flow.flow_on(e); amount > 0)
+          flows->push_back({p->i, p->j, static_cast<std::uint32_t>(amount)});
     return feasible;
   };
   // candidates.back() (every point to the diagonal) is feasible; find the least feasible.
   DistinctBottleneck result;
-  std::optional<MaxFlow> last;
   std::size_t lo = 0, hi = candidates.size() - 1;  // hi feasible; below lo none is
   while (lo < hi) {
     const std::size_t mid = lo + (hi - lo) / 2;
     ++result.flows;
-    if (decide(candidates[mid], last))
+    if (decide(candidates[mid], nullptr))
       hi = mid;
     else
       lo = mid + 1;
@@ -252,18 +262,9 @@ DistinctBottleneck distinct_bottleneck(const DistinctPoints& a, const DistinctPo
   result.value = candidates[hi];
   if (builder) {
     ++result.flows;
-    decide(result.value, last);
-    std::vector<std::uint32_t> next_a(a.first.begin(), a.first.end() - 1), next_b(b.first.begin(), b.first.end() - 1);
-    std::size_t k = 0;
-    for (const Pair& p : pairs) {
-      if (p.length > result.value) continue;
-      for (std::int64_t u = last->flow_on(pair_edges[k++]); u > 0; --u)
-        builder->pair(a.members[next_a[p.i]++], b.members[next_b[p.j]++]);
-    }
-    for (std::uint32_t i = 0; i < n; ++i)
-      while (next_a[i] < a.first[i + 1]) builder->a_to_diagonal(a.members[next_a[i]++]);
-    for (std::uint32_t j = 0; j < m; ++j)
-      while (next_b[j] < b.first[j + 1]) builder->b_to_diagonal(b.members[next_b[j]++]);
+    std::vector<NetworkSimplex::PairFlow> flows;
+    decide(result.value, &flows);
+    split_among_copies(a, b, flows, *builder);
   }
   return result;
 }

@@ -32,8 +32,7 @@ std::size_t count_distinct(std::span<const PlanePoint> points);
 // The distinct solve is taken when the copies at least halve the points and the complete graph
 // of distinct pairs has at most kMaxDistinctArcs arcs.
 inline constexpr std::size_t kMaxDistinctArcs = std::size_t{1} << 22;
-bool solve_distinct(std::size_t distinct_a, std::size_t distinct_b, std::size_t points_a, std::size_t points_b);
-// Both sides non-empty and solve_distinct on their counts.
+// Both sides non-empty, counted by count_distinct.
 bool solve_distinct(std::span<const PlanePoint> a, std::span<const PlanePoint> b);
 
 struct DistinctTransport {
